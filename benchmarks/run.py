@@ -1,0 +1,93 @@
+"""boatsim benchmarks (`make bench`): prints figures, asserts nothing.
+
+Wave queries (heights + normals + velocities, inversion included), the boat step, and the
+real-time factor of `boatsim run --fast` (in-process, no subscribers).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+
+from boat_dynamics.boat import BoatInputs, step
+from boat_dynamics.scenario import default_scenario_path, load_scenario
+from ocean_sim.waves import WaveComponent, WaveField, sample_surface
+
+
+def _best_of(fn, repeats: int) -> float:
+    """Fastest of ``repeats`` timed calls, s."""
+    best = math.inf
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def _sea(n: int, seed: int = 0) -> WaveField:
+    rng = np.random.default_rng(seed)
+    lam = rng.uniform(3.0, 120.0, n)
+    a = 0.9 / n * lam / (2 * math.pi)  # sum Q k a = 0.9 * Q
+    return WaveField(tuple(WaveComponent(float(a[i]), float(lam[i]), float(rng.uniform(-3, 3)),
+                                         0.8, float(rng.uniform(0, 6.28))) for i in range(n)))
+
+
+def bench_waves() -> None:
+    """Time sample_surface at the issue's two sizes."""
+    print("== wave queries: sample_surface (heights, normals, velocities; inversion included)")
+    for points, comps, repeats in ((1_000, 60, 20), (100_000, 16, 3)):
+        sea = _sea(comps)
+        xy = np.random.default_rng(1).uniform(-200, 200, (points, 2))
+        sec = _best_of(lambda sea=sea, xy=xy: sample_surface(sea, xy, 123.4), repeats)
+        print(f"  {points:>7} points x {comps:>2} components: {sec * 1e3:9.3f} ms  "
+              f"({sec / (points * comps) * 1e9:6.1f} ns per point-component)")
+
+
+def bench_boat_step() -> None:
+    """Time one boat step of the default boat on 3 and 16 wave components."""
+    print("== boat step (default boat, sample points 5x3 grid)")
+    sc = load_scenario(default_scenario_path())
+    boat = sc.boats[0]
+    inputs = BoatInputs(1.0, 0.2)
+    n = 2000
+    for comps in (3, 16):
+        sea = sc.sea if comps == 3 else _sea(comps)
+
+        def run(sea=sea):
+            s = boat.initial
+            for _ in range(n):
+                s = step(boat.params, s, inputs, sea, 0.01)
+
+        sec = _best_of(run, 3)
+        print(f"  {comps:>2} wave components: {sec / n * 1e6:8.1f} us per boat-step")
+
+
+def bench_run(seconds: float) -> None:
+    """Real-time factor of the whole in-process simulation with --fast."""
+    import io
+
+    from boat_dynamics.simulation import RunOptions, run
+
+    print(f"== boatsim run --fast --duration {seconds:g} (default scenario, no subscribers)")
+    sc = load_scenario(default_scenario_path())
+    t0 = time.perf_counter()
+    run(sc, RunOptions(fast=True, duration=seconds), status=io.StringIO())
+    wall = time.perf_counter() - t0
+    print(f"  {seconds:g} s simulated in {wall:.2f} s wall: real-time factor {seconds / wall:.1f}")
+
+
+def main() -> None:
+    """Run every benchmark."""
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--run-seconds", type=float, default=30.0)
+    args = parser.parse_args()
+    bench_waves()
+    bench_boat_step()
+    bench_run(args.run_seconds)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,221 @@
+"""A boat: parameters, state, inputs, the force sum and the step.
+
+``step(params, state, inputs, sea, dt) -> state`` is a pure function over frozen dataclasses
+(Gymnasium functional-env / brax pipeline style): this module only evaluates the force models
+(one module each), sums them and integrates. It never imports rclpy.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from boat_dynamics.buoyancy import SamplePointBuoyancy, sample_point_buoyancy
+from boat_dynamics.damping import damping
+from boat_dynamics.hull import BoxHull
+from boat_dynamics.propulsion import Propulsion, thrust
+from boat_dynamics.rigid_body import integrate, quat_from_euler, rotation_matrix
+from boat_dynamics.rudder import LiftRudder, rudder_lift
+from boat_dynamics.wrench import Wrench
+from ocean_sim.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.waves import WaveField, sample_surface
+
+__all__ = [
+    "BoatInputs",
+    "BoatParams",
+    "BoatState",
+    "Forces",
+    "evaluate_forces",
+    "initial_state",
+    "reference_pose",
+    "step",
+]
+
+
+@dataclass(frozen=True)
+class BoatParams:
+    """Everything constant about one boat.
+
+    Attributes:
+        hull: the hull geometry.
+        mass: kg, > 0.
+        center_of_mass: (3,) m, body frame, relative to the hull reference point.
+        inertia: (3,) kg m^2, principal moments about the centre of mass (body axes).
+        buoyancy: the buoyancy model parameters.
+        damping_linear: (6,) N/(m/s) and N m/(rad/s), per body DOF.
+        damping_quadratic: (6,) N/(m/s)^2 and N m/(rad/s)^2, per body DOF.
+        added_mass: (6,) kg and kg m^2, per body DOF (diagonal).
+        propulsion: the thruster.
+        rudder: the rudder.
+        water_density: rho, kg/m^3.
+        gravity: g, m/s^2.
+
+    """
+
+    hull: BoxHull
+    mass: float
+    center_of_mass: np.ndarray
+    inertia: np.ndarray
+    buoyancy: SamplePointBuoyancy
+    damping_linear: np.ndarray
+    damping_quadratic: np.ndarray
+    added_mass: np.ndarray
+    propulsion: Propulsion
+    rudder: LiftRudder
+    water_density: float = WATER_DENSITY
+    gravity: float = GRAVITY
+
+
+@dataclass(frozen=True)
+class BoatState:
+    """The state of one boat at time ``t``.
+
+    Attributes:
+        t: s, simulation time.
+        position: (3,) m, centre of mass, world frame (ENU).
+        orientation: (4,) unit quaternion (x, y, z, w), body (FLU) to world.
+        velocity: (3,) m/s, velocity of the centre of mass, body frame.
+        angular_velocity: (3,) rad/s, body frame.
+
+    """
+
+    t: float
+    position: np.ndarray
+    orientation: np.ndarray
+    velocity: np.ndarray
+    angular_velocity: np.ndarray
+
+
+@dataclass(frozen=True)
+class BoatInputs:
+    """Actuator commands, already validated and within range.
+
+    Attributes:
+        throttle: -1..1, fraction of max thrust (negative = reverse).
+        rudder: rad, + turns the bow to port.
+
+    """
+
+    throttle: float = 0.0
+    rudder: float = 0.0
+
+
+@dataclass(frozen=True)
+class Forces:
+    """Every wrench acting on the boat, body frame, about the centre of mass.
+
+    ``total`` is the net wrench (the sources plus gravity) that the integrator uses.
+    """
+
+    buoyancy: Wrench
+    damping: Wrench
+    thrust: Wrench
+    rudder: Wrench
+    gravity: Wrench
+    total: Wrench
+
+
+def initial_state(
+    params: BoatParams,
+    position: np.ndarray,
+    roll: float = 0.0,
+    pitch: float = 0.0,
+    yaw: float = 0.0,
+    t: float = 0.0,
+) -> BoatState:
+    """State at rest with the hull reference point at ``position`` (m, world) and given attitude.
+
+    Args:
+        params: the boat.
+        position: (3,) m, world position of the hull reference point.
+        roll: rad.
+        pitch: rad.
+        yaw: rad.
+        t: s.
+
+    Returns:
+        The state (centre of mass placed from the reference point and attitude).
+
+    """
+    q = quat_from_euler(roll, pitch, yaw)
+    com = np.asarray(position, dtype=float) + rotation_matrix(q) @ params.center_of_mass
+    return BoatState(t, com, q, np.zeros(3), np.zeros(3))
+
+
+def reference_pose(params: BoatParams, state: BoatState) -> tuple[np.ndarray, np.ndarray]:
+    """World position (3,) m of the hull reference point, and the orientation (4,)."""
+    r = rotation_matrix(state.orientation)
+    return state.position - r @ params.center_of_mass, state.orientation
+
+
+def evaluate_forces(
+    params: BoatParams, state: BoatState, inputs: BoatInputs, sea: WaveField
+) -> Forces:
+    """Evaluate every force model at ``state`` and sum them.
+
+    Args:
+        params: the boat.
+        state: its state.
+        inputs: validated actuator commands.
+        sea: the wave field.
+
+    Returns:
+        Each source's wrench and the total, body frame, about the centre of mass.
+
+    """
+    rot = rotation_matrix(state.orientation)
+    com = params.center_of_mass
+    ref = state.position - rot @ com
+    pts_world = ref + params.buoyancy.points @ rot.T
+    # One surface query: the buoyancy points, then the hull reference point (water velocity).
+    query = np.vstack([pts_world[:, :2], ref[None, :2]])
+    surface = sample_surface(sea, query, state.t)
+    depths = surface.heights[:-1] - pts_world[:, 2]
+    water_velocity_body = rot.T @ surface.velocities[-1]
+    relative_velocity = state.velocity - water_velocity_body
+
+    buoy = sample_point_buoyancy(
+        params.buoyancy, depths, rot, com, params.water_density, params.gravity
+    )
+    damp = damping(
+        params.damping_linear, params.damping_quadratic, relative_velocity, state.angular_velocity
+    )
+    push = thrust(params.propulsion, inputs.throttle, com)
+    steer = rudder_lift(
+        params.rudder, inputs.rudder, float(relative_velocity[0]), params.water_density, com
+    )
+    weight = Wrench(params.mass * params.gravity * -rot[2, :], np.zeros(3))
+    total = buoy + damp + push + steer + weight
+    return Forces(buoy, damp, push, steer, weight, total)
+
+
+def step(
+    params: BoatParams, state: BoatState, inputs: BoatInputs, sea: WaveField, dt: float
+) -> BoatState:
+    """Advance one boat by ``dt`` seconds (semi-implicit Euler).
+
+    Args:
+        params: the boat.
+        state: its state at time t.
+        inputs: validated actuator commands, held over the step.
+        sea: the wave field.
+        dt: s, > 0.
+
+    Returns:
+        The state at t + dt.
+
+    """
+    total = evaluate_forces(params, state, inputs, sea).total
+    p, q, v, w = integrate(
+        state.position,
+        state.orientation,
+        state.velocity,
+        state.angular_velocity,
+        total.force,
+        total.torque,
+        params.mass + params.added_mass[:3],
+        params.inertia + params.added_mass[3:],
+        dt,
+    )
+    return replace(state, t=state.t + dt, position=p, orientation=q, velocity=v, angular_velocity=w)

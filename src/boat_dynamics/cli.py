@@ -1,0 +1,76 @@
+"""The ``boatsim`` command line (console script; also ``python -m boat_dynamics``).
+
+Exit status: 0 success, 1 runtime failure, 2 invalid input (scenario, arguments, bag path).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections.abc import Sequence
+
+__all__ = ["main"]
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite number of seconds > 0")
+    return value
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="boatsim", description="ROS 2 simulation of boats on Gerstner waves.")
+    verbs = parser.add_subparsers(dest="verb", metavar="VERB", required=True)
+    run = verbs.add_parser("run", help="start the ocean and dynamics nodes for a scenario",
+                           description="Start the ocean node and the dynamics node for every "
+                                       "boat of SCENARIO in one process.")
+    run.add_argument("scenario", nargs="?", metavar="SCENARIO",
+                     help="scenario YAML file (default: scenarios/default.yaml)")
+    run.add_argument("--fast", action="store_true",
+                     help="run as fast as the machine allows and publish /clock")
+    run.add_argument("--duration", type=_positive_seconds, metavar="S",
+                     help="stop after S seconds of simulated time")
+    run.add_argument("--record", metavar="DIR",
+                     help="write every topic to a rosbag2 (MCAP) bag in the new directory DIR")
+    return parser
+
+
+def _run(args: argparse.Namespace) -> int:
+    # Imported here so that `boatsim --help` answers without starting ROS.
+    from boat_dynamics.recording import RecordError
+    from boat_dynamics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.simulation import RunOptions, run
+
+    path = args.scenario or default_scenario_path()
+    try:
+        scenario = load_scenario(path)
+    except ScenarioError as exc:
+        print(f"boatsim: error: invalid scenario {path}: {exc}", file=sys.stderr)
+        return 2
+    try:
+        return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
+                                        record=args.record))
+    except RecordError as exc:
+        print(f"boatsim: error: {exc}", file=sys.stderr)
+        return 2
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``boatsim``; returns the exit status."""
+    args = _parser().parse_args(argv)
+    try:
+        if args.verb == "run":
+            return _run(args)
+    except KeyboardInterrupt:
+        return 0
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

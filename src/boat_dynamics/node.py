@@ -1,0 +1,254 @@
+"""The dynamics node: integrates every boat of a scenario and publishes its state and wrenches.
+
+A thin adapter: it checks commands (:mod:`boat_dynamics.commands`), calls the core
+(:func:`boat_dynamics.boat.step`) and converts (:mod:`boat_msgs_py.convert`). The runner
+(:mod:`boat_dynamics.simulation`) calls :meth:`DynamicsNode.advance` once per physics step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from boat_msgs.msg import WaveField as WaveFieldMsg
+from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
+from rclpy.node import Node
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Float64
+
+from boat_dynamics.boat import BoatInputs, BoatState, Forces, evaluate_forces, reference_pose, step
+from boat_dynamics.commands import check_command
+from boat_dynamics.scenario import BoatSpec, Scenario
+from boat_msgs_py import names
+from boat_msgs_py.convert import (
+    odometry,
+    pose_stamped,
+    seconds_to_time,
+    twist_stamped,
+    wave_field_from_msg,
+    wrench_stamped,
+)
+from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, DIAGNOSTICS_QOS, STATE_QOS, WAVE_FIELD_QOS
+from boat_msgs_py.tap import Tap, TappedPublisher
+from ocean_sim.waves import InvalidSeaStateError, WaveField
+
+__all__ = ["DynamicsNode", "SimClock"]
+
+
+@dataclass
+class SimClock:
+    """The one simulation clock shared by the nodes of a run.
+
+    Attributes:
+        rate_hz: physics steps per simulated second.
+        epoch: s, message stamp of simulation time 0.
+        steps: physics steps taken.
+
+    """
+
+    rate_hz: float
+    epoch: float = 0.0
+    steps: int = 0
+
+    @property
+    def t(self) -> float:
+        """Simulation time, s (steps / rate, so it does not accumulate rounding)."""
+        return self.steps / self.rate_hz
+
+    def stamp_ns(self) -> int:
+        """Message / bag timestamp of the current simulation time, ns."""
+        return round((self.epoch + self.t) * 1e9)
+
+
+@dataclass
+class _Boat:
+    spec: BoatSpec
+    state: BoatState
+    throttle: float = 0.0
+    rudder: float = 0.0
+    last_thrust_t: float = -math.inf
+    timed_out: bool = True
+    pubs: dict[str, TappedPublisher] = field(default_factory=dict)
+    subs: list = field(default_factory=list)
+
+
+def _rate_descriptor(description: str, high: float) -> ParameterDescriptor:
+    return ParameterDescriptor(
+        description=description, read_only=True,
+        floating_point_range=[FloatingPointRange(from_value=0.001, to_value=high)],
+    )
+
+
+class DynamicsNode(Node):
+    """Steps the boats of a scenario and publishes their odometry and wrenches.
+
+    Args:
+        scenario: the validated scenario.
+        clock: the shared simulation clock (advanced by this node).
+        publish_clock: publish /clock (the simulation owns time: --fast).
+        tap: also hand every published message to this (recording), or None.
+
+    """
+
+    def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
+                 tap: Tap | None = None) -> None:
+        super().__init__("boat_dynamics")
+        sim = scenario.simulation
+        self._sim_clock = clock
+        self.declare_parameter("rate_hz", sim.rate_hz, _rate_descriptor(
+            "Physics steps per simulated second, Hz (scenario simulation.rate_hz).", 10000.0))
+        self.declare_parameter("publish_rate_hz", sim.publish_rate_hz, _rate_descriptor(
+            "odom / pose / twist messages per simulated second, Hz.", sim.rate_hz))
+        self.declare_parameter("diagnostics_rate_hz", sim.diagnostics_rate_hz, _rate_descriptor(
+            "wrench/* messages per simulated second, Hz.", sim.rate_hz))
+        self.declare_parameter("cmd_timeout", sim.cmd_timeout, ParameterDescriptor(
+            description="s without a cmd_thrust message after which thrust is set to 0.",
+            floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
+        self._rate = sim.rate_hz
+        self._dt = 1.0 / sim.rate_hz
+        self._publish_rate = sim.publish_rate_hz
+        self._diag_rate = sim.diagnostics_rate_hz
+        self.sea: WaveField | None = None
+        self._tap = tap
+        self._clock_pub = (TappedPublisher(self, Clock, names.CLOCK, CLOCK_QOS, tap)
+                           if publish_clock else None)
+        self._field_sub = self.create_subscription(
+            WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
+        self.boats = [self._make_boat(spec) for spec in scenario.boats]
+
+    # ------------------------------------------------------------------ set-up
+
+    def _make_boat(self, spec: BoatSpec) -> _Boat:
+        boat = _Boat(spec=spec, state=spec.initial)
+        for key, cls, topic, qos in (
+            ("odom", Odometry, names.ODOM, STATE_QOS),
+            ("pose", PoseStamped, names.POSE, STATE_QOS),
+            ("twist", TwistStamped, names.TWIST, STATE_QOS),
+        ):
+            boat.pubs[key] = TappedPublisher(self, cls, names.boat_topic(spec.name, topic), qos,
+                                             self._tap)
+        for source in names.WRENCH_SOURCES:
+            boat.pubs[source] = TappedPublisher(
+                self, WrenchStamped, names.wrench_topic(spec.name, source), DIAGNOSTICS_QOS,
+                self._tap)
+        label = spec.name or "(root namespace)"
+        if spec.commands is not None:
+            self.get_logger().info(f"boat {label}: scripted commands; ignoring command topics")
+        else:
+            max_rudder = spec.params.rudder.max_angle
+            thrust_topic = names.boat_topic(spec.name, names.CMD_THRUST)
+            rudder_topic = names.boat_topic(spec.name, names.CMD_RUDDER)
+            boat.subs.append(self.create_subscription(
+                Float64, thrust_topic,
+                lambda msg, b=boat, tp=thrust_topic: self._on_thrust(b, tp, msg.data),
+                COMMAND_QOS))
+            boat.subs.append(self.create_subscription(
+                Float64, rudder_topic,
+                lambda msg, b=boat, tp=rudder_topic, m=max_rudder: self._on_rudder(
+                    b, tp, msg.data, m),
+                COMMAND_QOS))
+        pos, _ = reference_pose(spec.params, boat.state)
+        self.get_logger().info(
+            f"boat {label}: mass {spec.params.mass:g} kg, start at "
+            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m; publishing "
+            f"{names.boat_topic(spec.name, names.ODOM)}")
+        return boat
+
+    # ------------------------------------------------------------------ callbacks
+
+    def _on_wave_field(self, msg: WaveFieldMsg) -> None:
+        try:
+            sea = wave_field_from_msg(msg)
+        except InvalidSeaStateError as exc:
+            self.get_logger().error(f"ignoring invalid {names.WAVE_FIELD}: {exc}; keeping the "
+                                    "previous sea state")
+            return
+        first = self.sea is None
+        self.sea = sea
+        self.get_logger().info(
+            f"{'received' if first else 'updated'} sea state: {len(sea.components)} components")
+
+    def _on_thrust(self, boat: _Boat, topic: str, raw: float) -> None:
+        checked = check_command(raw, -1.0, 1.0)
+        if checked.problem:
+            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        if checked.value is None:
+            return
+        boat.throttle = checked.value
+        boat.last_thrust_t = self._sim_clock.t
+        boat.timed_out = False
+
+    def _on_rudder(self, boat: _Boat, topic: str, raw: float, max_angle: float) -> None:
+        checked = check_command(raw, -max_angle, max_angle, "rad")
+        if checked.problem:
+            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        if checked.value is not None:
+            boat.rudder = checked.value
+
+    # ------------------------------------------------------------------ stepping
+
+    def _inputs(self, boat: _Boat) -> BoatInputs:
+        t = self._sim_clock.t
+        if boat.spec.commands is not None:
+            throttle, rudder = boat.spec.commands.at(t)
+            return BoatInputs(throttle, rudder)
+        timeout = self.get_parameter("cmd_timeout").value
+        if not boat.timed_out and t - boat.last_thrust_t > timeout:
+            boat.timed_out = True
+            if boat.throttle != 0.0:
+                self.get_logger().warning(
+                    f"{names.boat_topic(boat.spec.name, names.CMD_THRUST)}: no command for "
+                    f"{timeout:g} s; thrust set to 0")
+            boat.throttle = 0.0
+        return BoatInputs(boat.throttle, boat.rudder)
+
+    @staticmethod
+    def _due(k: int, rate: float, out_rate: float) -> bool:
+        """True on the steps where a stream at ``out_rate`` Hz publishes (step 0 included)."""
+        return k == 0 or math.floor(k * out_rate / rate) > math.floor((k - 1) * out_rate / rate)
+
+    def advance(self) -> None:
+        """Take one physics step for every boat, then publish what is due."""
+        if self.sea is None:
+            raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
+        for boat in self.boats:
+            boat.state = step(boat.spec.params, boat.state, self._inputs(boat), self.sea,
+                              self._dt)
+        self._sim_clock.steps += 1
+        self.publish_outputs()
+
+    def publish_outputs(self) -> None:
+        """Publish /clock, odometry and wrenches that are due at the current step."""
+        k = self._sim_clock.steps
+        stamp = seconds_to_time(self._sim_clock.epoch + self._sim_clock.t)
+        if self._clock_pub is not None:
+            self._clock_pub.publish(Clock(clock=stamp))
+        state_due = self._due(k, self._rate, self._publish_rate)
+        diag_due = self._due(k, self._rate, self._diag_rate)
+        for boat in self.boats:
+            if state_due:
+                self._publish_state(boat, stamp)
+            if diag_due:
+                self._publish_wrenches(boat, stamp)
+
+    def _publish_state(self, boat: _Boat, stamp) -> None:
+        params, state = boat.spec.params, boat.state
+        pos, q = reference_pose(params, state)
+        # velocity of the reference point: v_com + w x (r_ref - r_com), body frame
+        v_ref = state.velocity - np.cross(state.angular_velocity, params.center_of_mass)
+        odom = odometry(stamp, names.child_frame(boat.spec.name), pos, q, v_ref,
+                        state.angular_velocity)
+        boat.pubs["odom"].publish(odom)
+        boat.pubs["pose"].publish(pose_stamped(odom))
+        boat.pubs["twist"].publish(twist_stamped(odom))
+
+    def _publish_wrenches(self, boat: _Boat, stamp) -> None:
+        forces: Forces = evaluate_forces(boat.spec.params, boat.state, self._inputs(boat),
+                                         self.sea)
+        frame = names.child_frame(boat.spec.name)
+        for source in names.WRENCH_SOURCES:
+            w = getattr(forces, source)
+            boat.pubs[source].publish(wrench_stamped(stamp, frame, w.force, w.torque))

@@ -1,0 +1,138 @@
+"""rosbag2 (MCAP) recording through rosbags, without ros2cli.
+
+:class:`BagWriter` writes serialized messages; :class:`TopicRecorder` subscribes generically
+(raw serialized messages, no per-type code) to every topic it discovers and writes them.
+The simulation's own publishers hand their serialized messages to the same writer directly
+(:class:`boat_msgs_py.tap.TappedPublisher`), so nothing it publishes can be dropped by a slow
+subscriber.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+from boat_msgs_py.tap import Tap
+
+__all__ = ["BagWriter", "RecordError", "TopicRecorder"]
+
+
+class RecordError(RuntimeError):
+    """A bag that cannot be written (the directory exists, or is not writable)."""
+
+
+def _boat_msgs_dir() -> Path:
+    """share/boat_msgs/msg of the install: an ament prefix (colcon) or this venv (PyPI set-up)."""
+    prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    for prefix in [*prefixes, sys.prefix]:
+        candidate = Path(prefix) / "share" / "boat_msgs" / "msg"
+        if candidate.is_dir():
+            return candidate
+    raise RecordError("boat_msgs is not installed (no share/boat_msgs/msg in AMENT_PREFIX_PATH "
+                      f"or {sys.prefix}); run `make setup`")
+
+
+def _typestore():
+    store = get_typestore(Stores.ROS2_JAZZY)
+    msg_dir = _boat_msgs_dir()
+    types = {}
+    for path in sorted(msg_dir.glob("*.msg")):
+        types.update(get_types_from_msg(path.read_text(), f"boat_msgs/msg/{path.stem}"))
+    store.register(types)
+    return store
+
+
+class BagWriter:
+    """A rosbag2 bag with MCAP storage, written from serialized (CDR) messages.
+
+    Args:
+        path: directory to create; must not exist.
+
+    """
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        if self.path.exists():
+            raise RecordError(f"{self.path} already exists; choose a new directory for the bag")
+        self._store = _typestore()
+        self._writer = Writer(self.path, version=9, storage_plugin=StoragePlugin.MCAP)
+        try:
+            self._writer.open()
+        except Exception as exc:  # rosbags raises its own WriterError or OSError
+            raise RecordError(f"cannot create bag {self.path}: {exc}") from exc
+        self._connections: dict[str, object] = {}
+        self.counts: dict[str, int] = {}
+        self._closed = False
+
+    def write(self, topic: str, msgtype: str, data: bytes, stamp_ns: int) -> None:
+        """Append one serialized message of type ``msgtype`` on ``topic`` at ``stamp_ns``."""
+        conn = self._connections.get(topic)
+        if conn is None:
+            conn = self._writer.add_connection(topic, msgtype, typestore=self._store)
+            self._connections[topic] = conn
+            self.counts[topic] = 0
+        self._writer.write(conn, stamp_ns, data)
+        self.counts[topic] += 1
+
+    def tap(self, stamp_ns: Callable[[], int]) -> Tap:
+        """A :class:`Tap` writing into this bag, stamped by ``stamp_ns()`` (ns)."""
+        return Tap(lambda topic, msgtype, data: self.write(topic, msgtype, data, stamp_ns()))
+
+    def close(self) -> None:
+        """Finalize the bag (metadata.yaml and MCAP summary). Safe to call twice."""
+        if not self._closed:
+            self._closed = True
+            self._writer.close()
+
+
+class TopicRecorder:
+    """Records every topic it discovers on the graph, as raw serialized messages.
+
+    Args:
+        node: node to create the subscriptions on.
+        bag: where to write.
+        stamp_ns: bag timestamp of the current time, ns.
+        skip: topics not to subscribe to (those already tapped at their publisher).
+        qos: subscription QoS.
+
+    """
+
+    def __init__(self, node: Node, bag: BagWriter, stamp_ns: Callable[[], int],
+                 skip: set[str], qos: QoSProfile) -> None:
+        self._node = node
+        self._bag = bag
+        self._stamp_ns = stamp_ns
+        self._skip = skip
+        self._qos = qos
+        self._subs: dict[str, object] = {}
+
+    def discover(self) -> None:
+        """Subscribe to topics that appeared since the last call."""
+        for topic, types in self._node.get_topic_names_and_types():
+            if topic in self._subs or topic in self._skip or not types:
+                continue
+            msgtype = types[0]
+            pkg, kind, name = msgtype.split("/")
+            try:
+                cls = getattr(importlib.import_module(f"{pkg}.{kind}"), name)
+            except (ImportError, AttributeError):
+                self._node.get_logger().warning(
+                    f"not recording {topic}: type {msgtype} is not installed here")
+                self._subs[topic] = None
+                continue
+            self._subs[topic] = self._node.create_subscription(
+                cls, topic, self._writer_for(topic, msgtype), self._qos, raw=True)
+            self._node.get_logger().info(f"recording {topic} [{msgtype}]")
+
+    def _writer_for(self, topic: str, msgtype: str) -> Callable[[bytes], None]:
+        def on_message(data: bytes) -> None:
+            self._bag.write(topic, msgtype, data, self._stamp_ns())
+        return on_message

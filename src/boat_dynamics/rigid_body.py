@@ -1,0 +1,126 @@
+"""Rigid-body kinematics and integration: unit quaternions and a semi-implicit Euler step.
+
+Quaternions are (x, y, z, w) arrays, as in ROS messages; they rotate body (FLU) vectors into
+the world (ENU) frame. Linear and angular velocity in the state are body-frame quantities
+(Fossen's nu), so the equations of motion about the centre of mass are::
+
+    m (dv/dt + w x v) = F_body
+    I dw/dt + w x (I w) = tau_body
+
+Source: Fossen, "Handbook of Marine Craft Hydrodynamics and Motion Control" (2011),
+eqs. 3.47-3.48 with the origin at the centre of mass; quaternion kinematics eq. 2.54.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "integrate",
+    "quat_from_euler",
+    "quat_multiply",
+    "quat_to_euler",
+    "rotation_matrix",
+]
+
+
+def quat_multiply(q: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Hamilton product q * r of (x, y, z, w) quaternions."""
+    x1, y1, z1, w1 = q
+    x2, y2, z2, w2 = r
+    return np.array(
+        [
+            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        ]
+    )
+
+
+def rotation_matrix(q: np.ndarray) -> np.ndarray:
+    """(3, 3) matrix R rotating body vectors into the world frame, from a unit (x, y, z, w)."""
+    x, y, z, w = q
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+def quat_from_euler(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """Unit (x, y, z, w) quaternion from roll, pitch, yaw (rad), ZYX (yaw applied last).
+
+    Source: REP-103 fixed-axis roll-pitch-yaw; Fossen (2011) eq. 2.18.
+    """
+    cr, sr = np.cos(roll / 2), np.sin(roll / 2)
+    cp, sp = np.cos(pitch / 2), np.sin(pitch / 2)
+    cy, sy = np.cos(yaw / 2), np.sin(yaw / 2)
+    return np.array(
+        [
+            sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy,
+        ]
+    )
+
+
+def quat_to_euler(q: np.ndarray) -> tuple[float, float, float]:
+    """Roll, pitch, yaw (rad) of a unit (x, y, z, w) quaternion; inverse of quat_from_euler."""
+    x, y, z, w = q
+    roll = np.arctan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+    pitch = np.arcsin(np.clip(2 * (w * y - z * x), -1.0, 1.0))
+    yaw = np.arctan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    return float(roll), float(pitch), float(yaw)
+
+
+def _quat_exp(rotation_vector: np.ndarray) -> np.ndarray:
+    """Unit quaternion of a rotation by |v| rad about v/|v| (body frame)."""
+    angle = float(np.linalg.norm(rotation_vector))
+    if angle < 1e-12:
+        return np.array([*(0.5 * rotation_vector), 1.0]) / np.sqrt(1.0 + 0.25 * angle * angle)
+    axis = rotation_vector / angle
+    return np.array([*(axis * np.sin(angle / 2)), np.cos(angle / 2)])
+
+
+def integrate(
+    position: np.ndarray,
+    orientation: np.ndarray,
+    velocity: np.ndarray,
+    angular_velocity: np.ndarray,
+    force: np.ndarray,
+    torque: np.ndarray,
+    mass: np.ndarray,
+    inertia: np.ndarray,
+    dt: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """One semi-implicit (symplectic) Euler step of the body.
+
+    Velocities are updated first from the forces, then the pose from the new velocities.
+
+    Args:
+        position: (3,) m, centre of mass, world frame.
+        orientation: (4,) unit quaternion (x, y, z, w), body to world.
+        velocity: (3,) m/s, body frame.
+        angular_velocity: (3,) rad/s, body frame.
+        force: (3,) N, total, body frame.
+        torque: (3,) N m, total about the centre of mass, body frame.
+        mass: (3,) kg, effective mass per body axis (rigid-body mass plus added mass).
+        inertia: (3,) kg m^2, principal moments about the centre of mass (plus added inertia).
+        dt: s.
+
+    Returns:
+        New (position, orientation, velocity, angular_velocity).
+
+    """
+    v_dot = force / mass - np.cross(angular_velocity, velocity)
+    w_dot = (torque - np.cross(angular_velocity, inertia * angular_velocity)) / inertia
+    v = velocity + dt * v_dot
+    w = angular_velocity + dt * w_dot
+    q = quat_multiply(orientation, _quat_exp(w * dt))
+    q /= np.linalg.norm(q)
+    p = position + dt * (rotation_matrix(q) @ v)
+    return p, q, v, w

@@ -1,0 +1,421 @@
+"""Scenario files (YAML): parsing and validation into frozen core objects.
+
+The keys are the public contract of DESIGN.md ("Scenario file"). Every refusal raises
+:class:`ScenarioError` naming the key (as a path such as ``boats[0].hull.length``), the value
+and what is allowed. Pure Python + numpy; never imports rclpy.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+from boat_dynamics.boat import BoatParams, BoatState, initial_state
+from boat_dynamics.buoyancy import SamplePointBuoyancy
+from boat_dynamics.commands import CommandScript
+from boat_dynamics.hull import BoxHull
+from boat_dynamics.propulsion import Propulsion
+from boat_dynamics.rudder import LiftRudder
+from ocean_sim.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.waves import InvalidSeaStateError, WaveComponent, WaveField
+
+__all__ = [
+    "BoatSpec",
+    "Scenario",
+    "ScenarioError",
+    "SimulationSettings",
+    "default_scenario_path",
+    "load_scenario",
+    "parse_scenario",
+]
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot be run.
+
+    Attributes:
+        key: path of the offending key, e.g. ``boats[0].mass``.
+        value: the value found.
+        allowed: what would have been accepted.
+
+    """
+
+    def __init__(self, key: str, value: object, allowed: str) -> None:
+        self.key = key
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{key}: {value!r} is not allowed: {allowed}")
+
+
+@dataclass(frozen=True)
+class SimulationSettings:
+    """The ``simulation:`` block.
+
+    Attributes:
+        rate_hz: physics steps per simulated second.
+        publish_rate_hz: odom / pose / twist messages per simulated second.
+        diagnostics_rate_hz: wrench/* messages per simulated second.
+        realtime: pace the simulation to the wall clock (False = as fast as possible).
+        duration: s of simulated time to run, None = until stopped.
+        seed: random seed (generated sea states).
+        gravity: m/s^2.
+        water_density: kg/m^3.
+        cmd_timeout: s without a cmd_thrust message after which thrust is set to zero.
+
+    """
+
+    rate_hz: float = 100.0
+    publish_rate_hz: float = 50.0
+    diagnostics_rate_hz: float = 10.0
+    realtime: bool = True
+    duration: float | None = None
+    seed: int = 0
+    gravity: float = GRAVITY
+    water_density: float = WATER_DENSITY
+    cmd_timeout: float = 1.0
+
+
+@dataclass(frozen=True)
+class BoatSpec:
+    """One boat of a scenario.
+
+    Attributes:
+        name: the boat's namespace; "" for a lone boat in the root namespace.
+        params: its physical parameters.
+        initial: its initial state.
+        commands: scripted commands, or None to follow the command topics.
+
+    """
+
+    name: str
+    params: BoatParams
+    initial: BoatState
+    commands: CommandScript | None
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A whole run: settings, the sea and the boats."""
+
+    simulation: SimulationSettings
+    sea: WaveField
+    boats: tuple[BoatSpec, ...]
+    source: str = "<scenario>"
+
+
+def default_scenario_path() -> Path:
+    """Path of the shipped default scenario (scenarios/default.yaml)."""
+    return Path(__file__).resolve().parents[2] / "scenarios" / "default.yaml"
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and validate a scenario file.
+
+    Raises:
+        ScenarioError: unreadable file, bad YAML, or an invalid key or value.
+
+    """
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ScenarioError("file", str(p), f"must be a readable file ({exc.strerror})") from exc
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "somewhere"
+        raise ScenarioError("file", str(p), f"must be valid YAML (error at {where})") from exc
+    return parse_scenario({} if data is None else data, source=str(p))
+
+
+# --------------------------------------------------------------------------- readers
+
+
+def _mapping(value: Any, key: str) -> Mapping[str, Any]:
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping):
+        raise ScenarioError(key, value, "must be a mapping (key: value)")
+    return value
+
+
+def _only(d: Mapping[str, Any], key: str, allowed: tuple[str, ...]) -> None:
+    for k in d:
+        if k not in allowed:
+            raise ScenarioError(f"{key}.{k}" if key else str(k), d[k],
+                                f"unknown key; allowed keys here: {', '.join(allowed)}")
+
+
+def _number(
+    d: Mapping[str, Any],
+    name: str,
+    key: str,
+    default: float,
+    low: float = -math.inf,
+    high: float = math.inf,
+    low_open: bool = False,
+    unit: str = "",
+    allow_inf: bool = False,
+) -> float:
+    path = f"{key}.{name}" if key else name
+    v = d.get(name, default)
+    bounds = ("(" if low_open else "[") + f"{low:g}, {high:g}]" + (f" {unit}" if unit else "")
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise ScenarioError(path, v, f"must be a number in {bounds}")
+    v = float(v)
+    if math.isnan(v) or (math.isinf(v) and not allow_inf):
+        raise ScenarioError(path, v, f"must be a finite number in {bounds}")
+    if v < low or v > high or (low_open and v == low):
+        raise ScenarioError(path, v, f"must be in {bounds}")
+    return v
+
+
+def _vector(d: Mapping[str, Any], name: str, key: str, n: int, default: list[float],
+            low: float = -math.inf) -> np.ndarray:
+    path = f"{key}.{name}"
+    v = d.get(name, default)
+    if (not isinstance(v, (list, tuple)) or len(v) != n
+            or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v)):
+        raise ScenarioError(path, v, f"must be a list of {n} numbers")
+    arr = np.array(v, dtype=float)
+    if not np.all(np.isfinite(arr)):
+        raise ScenarioError(path, v, f"must be a list of {n} finite numbers")
+    if np.any(arr < low):
+        raise ScenarioError(path, v, f"every entry must be >= {low:g}")
+    return arr
+
+
+def _choice(d: Mapping[str, Any], name: str, key: str, default: str,
+            allowed: tuple[str, ...], later: tuple[str, ...] = ()) -> str:
+    path = f"{key}.{name}"
+    v = d.get(name, default)
+    if v in later:
+        raise ScenarioError(path, v, f"is not implemented yet; allowed now: {', '.join(allowed)}")
+    if v not in allowed:
+        raise ScenarioError(path, v, f"must be one of: {', '.join(allowed)}")
+    return str(v)
+
+
+# --------------------------------------------------------------------------- sections
+
+
+def _simulation(raw: Any) -> SimulationSettings:
+    key = "simulation"
+    d = _mapping(raw, key)
+    _only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
+                   "seed", "gravity", "water_density", "cmd_timeout"))
+    rate = _number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
+    pub = _number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
+    diag = _number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
+    realtime = d.get("realtime", True)
+    if not isinstance(realtime, bool):
+        raise ScenarioError(f"{key}.realtime", realtime, "must be true or false")
+    duration = d.get("duration")
+    if duration is not None:
+        duration = _number(d, "duration", key, 0.0, 0.0, math.inf, low_open=True, unit="s")
+    seed = d.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ScenarioError(f"{key}.seed", seed, "must be an integer >= 0")
+    return SimulationSettings(
+        rate_hz=rate,
+        publish_rate_hz=pub,
+        diagnostics_rate_hz=diag,
+        realtime=realtime,
+        duration=duration,
+        seed=seed,
+        gravity=_number(d, "gravity", key, GRAVITY, 0.0, 100.0, low_open=True, unit="m/s^2"),
+        water_density=_number(d, "water_density", key, WATER_DENSITY, 0.0, 1e5, low_open=True,
+                              unit="kg/m^3"),
+        cmd_timeout=_number(d, "cmd_timeout", key, 1.0, 0.0, 3600.0, low_open=True, unit="s"),
+    )
+
+
+def _ocean(raw: Any, sim: SimulationSettings) -> WaveField:
+    key = "ocean"
+    d = _mapping(raw, key)
+    _only(d, key, ("depth", "components", "spectrum"))
+    depth = _number(d, "depth", key, math.inf, 0.0, math.inf, low_open=True, unit="m",
+                    allow_inf=True)
+    if d.get("spectrum") is not None:
+        raise ScenarioError(f"{key}.spectrum", d["spectrum"],
+                            "generated sea states are not implemented yet; use ocean.components")
+    comps_raw = d.get("components") or []
+    if not isinstance(comps_raw, list):
+        raise ScenarioError(f"{key}.components", comps_raw, "must be a list of components")
+    comps = []
+    for i, c in enumerate(comps_raw):
+        ck = f"{key}.components[{i}]"
+        cd = _mapping(c, ck)
+        _only(cd, ck, ("amplitude", "wavelength", "direction_deg", "steepness", "phase"))
+        comps.append(WaveComponent(
+            amplitude=_number(cd, "amplitude", ck, 0.0, 0.0, unit="m"),
+            wavelength=_number(cd, "wavelength", ck, 10.0, 0.0, low_open=True, unit="m"),
+            direction=math.radians(_number(cd, "direction_deg", ck, 0.0, unit="deg")),
+            steepness=_number(cd, "steepness", ck, 0.0, 0.0, 1.0),
+            phase=_number(cd, "phase", ck, 0.0, unit="rad"),
+        ))
+    try:
+        return WaveField(tuple(comps), gravity=sim.gravity, depth=depth)
+    except InvalidSeaStateError as exc:
+        raise ScenarioError(f"{key}.{exc.key}", exc.value, exc.allowed) from exc
+
+
+_BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
+              "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
+              "commands")
+
+
+def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool) -> BoatSpec:
+    d = _mapping(raw, key)
+    _only(d, key, _BOAT_KEYS)
+    name = d.get("name", "" if lone else None)
+    if name is None:
+        raise ScenarioError(f"{key}.name", None, "every boat of a multi-boat scenario needs a name")
+    if not isinstance(name, str) or (name and not name.replace("_", "a").isalnum()) \
+            or (name and name[0].isdigit()):
+        raise ScenarioError(f"{key}.name", name,
+                            "must be a ROS name: letters, digits and _, not starting with a digit")
+
+    hk = f"{key}.hull"
+    hd = _mapping(d.get("hull"), hk)
+    _only(hd, hk, ("type", "length", "beam", "height", "path"))
+    _choice(hd, "type", hk, "box", ("box",), later=("mesh",))
+    hull = BoxHull(
+        length=_number(hd, "length", hk, 4.0, 0.0, 1000.0, low_open=True, unit="m"),
+        beam=_number(hd, "beam", hk, 2.0, 0.0, 1000.0, low_open=True, unit="m"),
+        height=_number(hd, "height", hk, 1.0, 0.0, 1000.0, low_open=True, unit="m"),
+    )
+
+    if "mass" in d and "density" in d:
+        raise ScenarioError(f"{key}.density", d["density"],
+                            "give either mass or density, not both (the other is derived)")
+    if "density" in d:
+        density = _number(d, "density", key, 0.0, 0.0, math.inf, low_open=True, unit="kg/m^3")
+        mass = density * hull.volume
+    else:
+        mass = _number(d, "mass", key, 0.5 * sim.water_density * hull.volume, 0.0, math.inf,
+                       low_open=True, unit="kg")
+    com = _vector(d, "center_of_mass", key, 3, [0.0, 0.0, 0.0])
+    inertia_raw = d.get("inertia")
+    inertia = (hull.solid_inertia(mass) if inertia_raw is None
+               else _vector(d, "inertia", key, 3, [1.0, 1.0, 1.0], low=0.0))
+    if np.any(inertia <= 0.0):
+        raise ScenarioError(f"{key}.inertia", inertia_raw, "every moment must be > 0 (kg m^2)")
+
+    bk = f"{key}.buoyancy"
+    bd = _mapping(d.get("buoyancy"), bk)
+    _only(bd, bk, ("model", "grid"))
+    _choice(bd, "model", bk, "sample_points", ("sample_points",), later=("mesh",))
+    grid = bd.get("grid", [5, 3])
+    if (not isinstance(grid, list) or len(grid) != 2
+            or not all(isinstance(g, int) and not isinstance(g, bool) and 1 <= g <= 100
+                       for g in grid)):
+        raise ScenarioError(f"{bk}.grid", grid, "must be [nx, ny], integers in [1, 100]")
+    buoyancy = SamplePointBuoyancy(points=hull.bottom_grid(*grid), volume=hull.volume,
+                                   max_depth=hull.height)
+
+    dk = f"{key}.damping"
+    dd = _mapping(d.get("damping"), dk)
+    _only(dd, dk, ("linear", "quadratic"))
+    linear = _vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
+    quadratic = _vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0)
+    added = _vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0)
+
+    pk = f"{key}.propulsion"
+    pd = _mapping(d.get("propulsion"), pk)
+    _only(pd, pk, ("max_thrust", "position", "direction"))
+    direction = _vector(pd, "direction", pk, 3, [1.0, 0.0, 0.0])
+    norm = float(np.linalg.norm(direction))
+    if norm < 1e-9:
+        raise ScenarioError(f"{pk}.direction", pd.get("direction"), "must be a non-zero vector")
+    propulsion = Propulsion(
+        max_thrust=_number(pd, "max_thrust", pk, 2000.0, 0.0, 1e8, low_open=True, unit="N"),
+        position=_vector(pd, "position", pk, 3, [-hull.length / 2, 0.0, -hull.height / 4]),
+        direction=direction / norm,
+    )
+
+    rk = f"{key}.rudder"
+    rd = _mapping(d.get("rudder"), rk)
+    _only(rd, rk, ("model", "max_angle_deg", "area", "lift_coefficient", "position"))
+    _choice(rd, "model", rk, "lift", ("lift",), later=("torque", "hybrid"))
+    rudder = LiftRudder(
+        area=_number(rd, "area", rk, 0.25, 0.0, 1e4, low_open=True, unit="m^2"),
+        lift_coefficient=_number(rd, "lift_coefficient", rk, 1.0, 0.0, 10.0, low_open=True),
+        position=_vector(rd, "position", rk, 3, [-hull.length / 2, 0.0, -hull.height / 2]),
+        max_angle=math.radians(_number(rd, "max_angle_deg", rk, 35.0, 0.0, 90.0, low_open=True,
+                                       unit="deg")),
+    )
+
+    _choice(d, "control_mode", key, "dynamic", ("dynamic",),
+            later=("kinematic", "kinematic_heave", "constrained", "blend"))
+
+    ik = f"{key}.initial_pose"
+    idd = _mapping(d.get("initial_pose"), ik)
+    _only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
+    params = BoatParams(
+        hull=hull, mass=mass, center_of_mass=com, inertia=inertia, buoyancy=buoyancy,
+        damping_linear=linear, damping_quadratic=quadratic, added_mass=added,
+        propulsion=propulsion, rudder=rudder,
+        water_density=sim.water_density, gravity=sim.gravity,
+    )
+    initial = initial_state(
+        params,
+        _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
+        roll=math.radians(_number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),
+        pitch=math.radians(_number(idd, "pitch_deg", ik, 0.0, -90.0, 90.0, unit="deg")),
+        yaw=math.radians(_number(idd, "yaw_deg", ik, 0.0, -360.0, 360.0, unit="deg")),
+    )
+    return BoatSpec(name=name, params=params, initial=initial,
+                    commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
+
+
+def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
+    if raw is None:
+        return None
+    if not isinstance(raw, list) or not raw:
+        raise ScenarioError(key, raw, "must be a non-empty list of {t, thrust, rudder}")
+    times, throttles, rudders = [], [], []
+    for i, entry in enumerate(raw):
+        ek = f"{key}[{i}]"
+        ed = _mapping(entry, ek)
+        _only(ed, ek, ("t", "thrust", "rudder"))
+        t = _number(ed, "t", ek, 0.0, 0.0, unit="s")
+        if times and t <= times[-1]:
+            raise ScenarioError(f"{ek}.t", t,
+                                f"must be later than the previous entry ({times[-1]})")
+        times.append(t)
+        throttles.append(_number(ed, "thrust", ek, 0.0, -1.0, 1.0))
+        rudders.append(_number(ed, "rudder", ek, 0.0, -max_rudder, max_rudder, unit="rad"))
+    return CommandScript(tuple(times), tuple(throttles), tuple(rudders))
+
+
+def parse_scenario(data: Any, source: str = "<scenario>") -> Scenario:
+    """Validate a scenario given as parsed YAML (nested dicts and lists).
+
+    Raises:
+        ScenarioError: an invalid key or value, named by its path.
+
+    """
+    d = _mapping(data, "")
+    _only(d, "", ("simulation", "ocean", "boats"))
+    sim = _simulation(d.get("simulation"))
+    sea = _ocean(d.get("ocean"), sim)
+    boats_raw = d.get("boats")
+    if boats_raw is None:
+        boats_raw = [{}]
+    if not isinstance(boats_raw, list) or not boats_raw:
+        raise ScenarioError("boats", boats_raw, "must be a non-empty list of boats")
+    lone = len(boats_raw) == 1
+    boats = tuple(_boat(b, f"boats[{i}]", sim, lone) for i, b in enumerate(boats_raw))
+    names = [b.name for b in boats]
+    for i, n in enumerate(names):
+        if names.index(n) != i:
+            raise ScenarioError(f"boats[{i}].name", n, "must be unique among the boats")
+    return Scenario(simulation=sim, sea=sea, boats=boats, source=source)

@@ -1,0 +1,191 @@
+"""`boatsim run`: the ocean node and the dynamics node in one process, on one clock.
+
+The loop takes one physics step, publishes what is due, then serves ROS callbacks (commands,
+service calls) until the next step is due: paced to the wall clock in real time, or with no
+waiting at all in ``--fast`` mode, where the simulation publishes /clock.
+"""
+
+from __future__ import annotations
+
+import math
+import signal
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from typing import TextIO
+
+import rclpy
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor, TimeoutException
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.signals import SignalHandlerOptions
+
+from boat_dynamics.boat import reference_pose
+from boat_dynamics.node import DynamicsNode, SimClock
+from boat_dynamics.recording import BagWriter, TopicRecorder
+from boat_dynamics.rigid_body import quat_to_euler
+from boat_dynamics.scenario import Scenario
+from ocean_sim.node import OceanNode
+
+__all__ = ["RunOptions", "run"]
+
+#: How long to wait for the dynamics node to receive the first wave field, s (wall).
+_FIELD_TIMEOUT = 10.0
+#: Wall-clock period of the live status line, s.
+_STATUS_PERIOD = 0.25
+#: Wall-clock period of the status line when stderr is not a terminal, s.
+_LOG_STATUS_PERIOD = 5.0
+#: Wall-clock period of topic discovery for the recorder, s.
+_DISCOVERY_PERIOD = 1.0
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How to run a scenario.
+
+    Attributes:
+        fast: run as fast as possible and publish /clock (else paced to real time).
+        duration: s of simulated time, None = until stopped.
+        record: directory of a rosbag2 (MCAP) bag to write, or None.
+
+    """
+
+    fast: bool = False
+    duration: float | None = None
+    record: str | None = None
+
+
+def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
+    """Run the callbacks that are ready now, without waiting (at most ``limit``)."""
+    for _ in range(limit):
+        try:
+            handler, _, _ = executor.wait_for_ready_callbacks(timeout_sec=0.0)
+        except TimeoutException:
+            return
+        handler()
+        if handler.exception() is not None:
+            raise handler.exception()
+
+
+class _Status:
+    """The live status line: sim time, real-time factor, first boat's position, speed, heading."""
+
+    def __init__(self, stream: TextIO, n_boats: int) -> None:
+        self._stream = stream
+        self._tty = stream.isatty()
+        self._period = _STATUS_PERIOD if self._tty else _LOG_STATUS_PERIOD
+        self._n = n_boats
+        self._wall0 = time.monotonic()
+        self._next = self._wall0 + self._period
+        self._written = False
+
+    def update(self, node: DynamicsNode, t: float, force: bool = False) -> None:
+        now = time.monotonic()
+        if not force and now < self._next:
+            return
+        self._next = now + self._period
+        boat = node.boats[0]
+        pos, q = reference_pose(boat.spec.params, boat.state)
+        speed = math.hypot(boat.state.velocity[0], boat.state.velocity[1])
+        heading = math.degrees(quat_to_euler(q)[2])
+        rtf = t / max(now - self._wall0, 1e-9)
+        label = boat.spec.name or "boat"
+        more = f" (+{self._n - 1} boats)" if self._n > 1 else ""
+        line = (f"t {t:8.2f} s  x{rtf:6.2f}  {label}{more}: pos ({pos[0]:7.2f}, {pos[1]:7.2f}, "
+                f"{pos[2]:5.2f}) m  speed {speed:5.2f} m/s  heading {heading:6.1f} deg")
+        if self._tty:
+            self._stream.write("\r" + line)
+            self._written = True
+        else:
+            self._stream.write(line + "\n")
+        self._stream.flush()
+
+    def close(self) -> None:
+        if self._written:
+            self._stream.write("\n")
+            self._stream.flush()
+
+
+def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) -> int:
+    """Run a scenario until its duration, Ctrl-C or SIGTERM. Returns the exit status (0).
+
+    SIGINT and SIGTERM only set a flag that the loop checks after every step, so the step in
+    progress completes, the bag is finalized and the nodes are destroyed before ROS shuts down.
+
+    Raises:
+        RecordError: the bag directory cannot be created.
+
+    """
+    sim = scenario.simulation
+    fast = options.fast or not sim.realtime
+    duration = options.duration if options.duration is not None else sim.duration
+    clock = SimClock(rate_hz=sim.rate_hz, epoch=0.0 if fast else time.time())
+    bag = BagWriter(options.record) if options.record else None
+    tap = bag.tap(clock.stamp_ns) if bag is not None else None
+
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set())
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    executor = SingleThreadedExecutor()
+    nodes = []
+    display = _Status(status, len(scenario.boats))
+    try:
+        ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap)
+        dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap)
+        nodes = [ocean, dynamics]
+        recorder = None
+        if bag is not None:
+            # The sim's own topics are tapped at their publishers; the recorder takes the rest.
+            recorder = TopicRecorder(
+                dynamics, bag, clock.stamp_ns, skip=tap.topics,
+                qos=QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE))
+            recorder.discover()
+        for n in nodes:
+            executor.add_node(n)
+        deadline = time.monotonic() + _FIELD_TIMEOUT
+        while dynamics.sea is None and not stop.is_set():
+            if time.monotonic() > deadline:
+                dynamics.get_logger().error("no wave field received from the ocean node")
+                return 1
+            executor.spin_once(timeout_sec=0.05)
+        if stop.is_set():
+            return 0
+        dynamics.publish_outputs()
+        dynamics.get_logger().info(
+            f"running {scenario.source}: {len(scenario.boats)} boat(s) at {sim.rate_hz:g} Hz, "
+            f"{'as fast as possible (/clock published)' if fast else 'real time'}"
+            + (f", for {duration:g} s" if duration else "")
+            + (f", recording to {bag.path}" if bag else ""))
+        wall0 = time.monotonic()
+        next_discovery = wall0 + _DISCOVERY_PERIOD
+        while (duration is None or clock.t < duration - 0.5 / sim.rate_hz) and not stop.is_set():
+            dynamics.advance()
+            if fast:
+                _spin_pending(executor)
+            else:
+                step_due = wall0 + clock.t
+                while (remaining := step_due - time.monotonic()) > 0 and not stop.is_set():
+                    executor.spin_once(timeout_sec=remaining)
+            if recorder is not None and time.monotonic() > next_discovery:
+                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+                recorder.discover()
+            display.update(dynamics, clock.t)
+        display.update(dynamics, clock.t, force=True)
+        return 0
+    except (KeyboardInterrupt, ExternalShutdownException):
+        return 0
+    finally:
+        display.close()
+        if bag is not None:
+            bag.close()
+            total = sum(bag.counts.values())
+            print(f"boatsim: wrote {total} messages on {len(bag.counts)} topics to {bag.path}",
+                  file=status)
+        for n in nodes:
+            executor.remove_node(n)
+            n.destroy_node()
+        executor.shutdown(timeout_sec=0.1)
+        rclpy.try_shutdown()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

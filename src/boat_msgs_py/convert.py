@@ -1,0 +1,128 @@
+"""Conversions between the numpy core and ROS messages."""
+
+from __future__ import annotations
+
+import numpy as np
+from boat_msgs.msg import WaveComponent as WaveComponentMsg
+from boat_msgs.msg import WaveField as WaveFieldMsg
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import (
+    Point,
+    PoseStamped,
+    Quaternion,
+    TwistStamped,
+    Vector3,
+    WrenchStamped,
+)
+from nav_msgs.msg import Odometry
+from std_msgs.msg import Header
+
+from boat_msgs_py.names import WORLD_FRAME
+from ocean_sim.waves import WaveComponent, WaveField
+
+__all__ = [
+    "odometry",
+    "pose_stamped",
+    "seconds_to_time",
+    "time_to_seconds",
+    "twist_stamped",
+    "vectors",
+    "wave_field_from_msg",
+    "wave_field_to_msg",
+    "wrench_stamped",
+]
+
+
+def seconds_to_time(seconds: float) -> Time:
+    """builtin_interfaces/Time from float seconds (>= 0), rounded to the nanosecond."""
+    ns = round(seconds * 1e9)
+    return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+
+
+def time_to_seconds(stamp: Time) -> float:
+    """Float seconds of a builtin_interfaces/Time."""
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def _header(stamp: Time, frame: str) -> Header:
+    return Header(stamp=stamp, frame_id=frame)
+
+
+def _quat(q: np.ndarray) -> Quaternion:
+    return Quaternion(x=float(q[0]), y=float(q[1]), z=float(q[2]), w=float(q[3]))
+
+
+def _vec(v: np.ndarray) -> Vector3:
+    return Vector3(x=float(v[0]), y=float(v[1]), z=float(v[2]))
+
+
+def vectors(rows: np.ndarray) -> list[Vector3]:
+    """(N, 3) array -> list of geometry_msgs/Vector3."""
+    return [Vector3(x=x, y=y, z=z) for x, y, z in np.asarray(rows, dtype=float).tolist()]
+
+
+def odometry(stamp: Time, child: str, position: np.ndarray, orientation: np.ndarray,
+             velocity: np.ndarray, angular_velocity: np.ndarray) -> Odometry:
+    """nav_msgs/Odometry: pose of the hull reference point in ``world``, twist in the body frame.
+
+    Args:
+        stamp: message time.
+        child: child frame id (``<boat>/base_link``).
+        position: (3,) m, world.
+        orientation: (4,) (x, y, z, w).
+        velocity: (3,) m/s, body frame, of the reference point.
+        angular_velocity: (3,) rad/s, body frame.
+
+    """
+    msg = Odometry(header=_header(stamp, WORLD_FRAME), child_frame_id=child)
+    msg.pose.pose.position = Point(x=float(position[0]), y=float(position[1]),
+                                   z=float(position[2]))
+    msg.pose.pose.orientation = _quat(orientation)
+    msg.twist.twist.linear = _vec(velocity)
+    msg.twist.twist.angular = _vec(angular_velocity)
+    return msg
+
+
+def pose_stamped(odom: Odometry) -> PoseStamped:
+    """The pose part of an Odometry message."""
+    return PoseStamped(header=odom.header, pose=odom.pose.pose)
+
+
+def twist_stamped(odom: Odometry) -> TwistStamped:
+    """The twist part of an Odometry message (body frame)."""
+    return TwistStamped(header=_header(odom.header.stamp, odom.child_frame_id),
+                        twist=odom.twist.twist)
+
+
+def wrench_stamped(stamp: Time, frame: str, force: np.ndarray, torque: np.ndarray
+                   ) -> WrenchStamped:
+    """geometry_msgs/WrenchStamped in the body frame ``frame``."""
+    msg = WrenchStamped(header=_header(stamp, frame))
+    msg.wrench.force = _vec(force)
+    msg.wrench.torque = _vec(torque)
+    return msg
+
+
+def wave_field_to_msg(sea: WaveField, stamp: Time) -> WaveFieldMsg:
+    """boat_msgs/WaveField of a core WaveField."""
+    return WaveFieldMsg(
+        header=_header(stamp, WORLD_FRAME),
+        gravity=float(sea.gravity),
+        depth=float(sea.depth),
+        components=[
+            WaveComponentMsg(amplitude=float(c.amplitude), wavelength=float(c.wavelength),
+                             direction=float(c.direction), steepness=float(c.steepness),
+                             phase=float(c.phase))
+            for c in sea.components
+        ],
+    )
+
+
+def wave_field_from_msg(msg: WaveFieldMsg) -> WaveField:
+    """Core WaveField of a boat_msgs/WaveField (validated: may raise InvalidSeaStateError)."""
+    return WaveField(
+        tuple(WaveComponent(c.amplitude, c.wavelength, c.direction, c.steepness, c.phase)
+              for c in msg.components),
+        gravity=msg.gravity,
+        depth=msg.depth,
+    )

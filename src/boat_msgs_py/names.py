@@ -1,0 +1,51 @@
+"""Topic, service and frame names (DESIGN.md, "ROS interface": public contract).
+
+Per-boat names are relative to the boat's namespace; :func:`boat_topic` resolves them.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "CLOCK",
+    "CMD_RUDDER",
+    "CMD_THRUST",
+    "ODOM",
+    "POSE",
+    "SAMPLE_SURFACE",
+    "TWIST",
+    "WAVE_FIELD",
+    "WORLD_FRAME",
+    "WRENCH_SOURCES",
+    "boat_topic",
+    "child_frame",
+    "wrench_topic",
+]
+
+CMD_THRUST = "cmd_thrust"
+CMD_RUDDER = "cmd_rudder"
+ODOM = "odom"
+POSE = "pose"
+TWIST = "twist"
+#: wrench/<source> topics published by the dynamics node (``total`` includes gravity).
+WRENCH_SOURCES = ("buoyancy", "damping", "thrust", "rudder", "total")
+
+WAVE_FIELD = "/ocean/wave_field"
+SAMPLE_SURFACE = "/ocean/sample_surface"
+CLOCK = "/clock"
+
+WORLD_FRAME = "world"
+
+
+def boat_topic(boat: str, name: str) -> str:
+    """Absolute topic of a per-boat name: ``/odom`` for the root boat, ``/<boat>/odom`` else."""
+    return f"/{boat}/{name}" if boat else f"/{name}"
+
+
+def wrench_topic(boat: str, source: str) -> str:
+    """Absolute ``wrench/<source>`` topic of a boat."""
+    return boat_topic(boat, f"wrench/{source}")
+
+
+def child_frame(boat: str) -> str:
+    """The body frame id of a boat: ``<boat>/base_link`` (``base_link`` for the root boat)."""
+    return f"{boat}/base_link" if boat else "base_link"

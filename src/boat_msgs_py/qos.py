@@ -1,0 +1,39 @@
+"""Named QoS profiles of the boatsim interface.
+
+Publishers are RELIABLE so that subscribers created with the rclpy default (reliable, depth
+10) and best-effort ones (RViz, sensor-data QoS) both connect.
+"""
+
+from __future__ import annotations
+
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+__all__ = ["CLOCK_QOS", "COMMAND_QOS", "DIAGNOSTICS_QOS", "STATE_QOS", "WAVE_FIELD_QOS"]
+
+#: cmd_thrust / cmd_rudder subscriptions: reliable, last 10; matches a plain
+#: ``create_publisher(Float64, "/cmd_thrust", 10)``.
+COMMAND_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=10,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)
+
+#: odom / pose / twist: reliable, last 10, volatile.
+STATE_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=10,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)
+
+#: wrench/* topics: reliable, last 10, volatile.
+DIAGNOSTICS_QOS = STATE_QOS
+
+#: /ocean/wave_field: reliable and transient-local, so late joiners get the current sea.
+WAVE_FIELD_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=1,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+)
+
+#: /clock: reliable, last 1 (serves rclpy's best-effort time source subscription too).
+CLOCK_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=1,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)

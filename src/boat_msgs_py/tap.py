@@ -1,0 +1,65 @@
+"""Publishers whose serialized messages are also handed to a recorder (a "tap").
+
+Recording at the publisher, in the publishing thread, means nothing the simulation publishes
+can be lost by a slow subscriber, and the bag's timestamps are simulation time.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from rclpy.serialization import serialize_message
+
+__all__ = ["Tap", "TappedPublisher", "type_name"]
+
+
+def type_name(msg_class: type) -> str:
+    """ROS type string of a message class, e.g. ``nav_msgs/msg/Odometry``."""
+    pkg = msg_class.__module__.split(".")[0]
+    return f"{pkg}/msg/{msg_class.__name__}"
+
+
+class Tap:
+    """Where tapped publishers send their serialized messages.
+
+    Args:
+        sink: called with (topic, type string, serialized CDR bytes) for every message.
+
+    """
+
+    def __init__(self, sink: Callable[[str, str, bytes], None]) -> None:
+        self.sink = sink
+        self.topics: set[str] = set()
+
+
+class TappedPublisher:
+    """A publisher that also hands each serialized message to a :class:`Tap`.
+
+    Args:
+        node: the owning node.
+        msg_class: message type.
+        topic: absolute topic name.
+        qos: QoS profile.
+        tap: where to send messages, or None for a plain publisher.
+
+    """
+
+    def __init__(self, node: Node, msg_class: type, topic: str, qos: QoSProfile,
+                 tap: Tap | None = None) -> None:
+        self.topic = topic
+        self._pub = node.create_publisher(msg_class, topic, qos)
+        self._type = type_name(msg_class)
+        self._tap = tap
+        if tap is not None:
+            tap.topics.add(topic)
+
+    def publish(self, msg: object) -> None:
+        """Publish ``msg`` (and hand it to the tap)."""
+        if self._tap is None:
+            self._pub.publish(msg)
+            return
+        data = serialize_message(msg)
+        self._pub.publish(data)
+        self._tap.sink(self.topic, self._type, data)

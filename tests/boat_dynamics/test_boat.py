@@ -1,0 +1,136 @@
+"""The boat against closed forms: Archimedes, heave period, terminal speed, steering."""
+
+import math
+
+import numpy as np
+import pytest
+
+from boat_dynamics.boat import BoatInputs, evaluate_forces, initial_state, reference_pose, step
+from boat_dynamics.rigid_body import quat_to_euler
+from ocean_sim.waves import WaveComponent, WaveField
+
+FLAT = WaveField()
+DT = 0.01
+
+
+def rollout(params, state, inputs, seconds, sea=FLAT, dt=DT):
+    for _ in range(round(seconds / dt)):
+        state = step(params, state, inputs, sea, dt)
+    return state
+
+
+def draft(params, state):
+    """Depth of the hull bottom below the flat surface, m."""
+    return params.hull.height / 2 - reference_pose(params, state)[0][2]
+
+
+@pytest.mark.parametrize("ratio", [0.2, 0.5, 0.8])
+@pytest.mark.parametrize("scale", [1.0, 2.0])  # 8x the mass at the same density
+def test_box_floats_at_density_ratio_draft_whatever_its_mass(boat_factory, ratio, scale):
+    params = boat_factory(4.0 * scale, 2.0 * scale, 1.0 * scale, density_ratio=ratio,
+                          linear=(0, 0, 2e4 * scale**3, 1e4 * scale**5, 1e4 * scale**5, 0))
+    # heave damping near critical for quick settling: b = 2 sqrt(k m)
+    k = params.water_density * params.gravity * params.hull.waterplane_area
+    crit = 2 * math.sqrt(k * params.mass)
+    params = type(params)(**{**params.__dict__, "damping_linear": np.array(
+        [0, 0, crit, 1e4 * scale**5, 1e4 * scale**5, 0.0])})
+    state = initial_state(params, [0.0, 0.0, 0.3 * scale])  # released 0.3 m high
+    state = rollout(params, state, BoatInputs(), 20.0)
+    assert draft(params, state) == pytest.approx(ratio * params.hull.height, abs=1e-3 * scale)
+    assert abs(state.velocity[2]) < 1e-4
+
+
+def test_mass_times_gravity_equals_buoyancy_at_equilibrium(boat_factory):
+    params = boat_factory(density_ratio=0.35)
+    eq = initial_state(params, [0.0, 0.0, params.hull.height / 2 - 0.35 * params.hull.height])
+    forces = evaluate_forces(params, eq, BoatInputs(), FLAT)
+    assert forces.buoyancy.force[2] == pytest.approx(params.mass * params.gravity, rel=1e-12)
+    assert np.abs(forces.total.force).max() < 1e-9 * params.mass
+
+
+def test_undamped_heave_period(boat_factory):
+    params = boat_factory(density_ratio=0.5)
+    state = initial_state(params, [0.0, 0.0, 0.05])  # 5 cm above equilibrium
+    zs, ts = [], []
+    dt = 0.001
+    for i in range(round(10.0 / dt)):
+        state = step(params, state, BoatInputs(), FLAT, dt)
+        zs.append(reference_pose(params, state)[0][2])
+        ts.append((i + 1) * dt)
+    zs = np.array(zs)
+    ts = np.array(ts)
+    up = np.flatnonzero((zs[:-1] < 0) & (zs[1:] >= 0))
+    crossings = ts[up] - zs[up + 1] * dt / (zs[up + 1] - zs[up])  # linear interpolation
+    period = np.diff(crossings).mean()
+    k = params.water_density * params.gravity * params.hull.waterplane_area
+    expected = 2 * math.pi * math.sqrt(params.mass / k)
+    assert len(crossings) >= 4
+    assert period == pytest.approx(expected, rel=5e-3)
+    # undamped: the amplitude does not decay
+    assert zs[-round(expected / dt):].max() == pytest.approx(0.05, rel=0.02)
+
+
+@pytest.mark.parametrize(("linear", "quadratic"), [(500.0, 0.0), (200.0, 60.0), (0.0, 120.0)])
+def test_terminal_speed_where_thrust_equals_drag(boat_factory, linear, quadratic):
+    params = boat_factory(com=(0.0, 0.0, 0.0), thrust_at=(0.0, 0.0, 0.0),
+                          linear=(linear, 5000, 2e4, 1e4, 1e4, 5000),
+                          quadratic=(quadratic, 0, 0, 0, 0, 0))
+    thrust = params.propulsion.max_thrust
+    if quadratic == 0.0:
+        expected = thrust / linear
+    else:  # b u + c u^2 = T
+        expected = (-linear + math.sqrt(linear**2 + 4 * quadratic * thrust)) / (2 * quadratic)
+    state = initial_state(params, [0.0, 0.0, 0.0])
+    state = rollout(params, state, BoatInputs(throttle=1.0), 120.0)
+    assert state.velocity[0] == pytest.approx(expected, rel=2e-3)
+
+
+@pytest.mark.parametrize("angle", [0.3, -0.3])
+def test_positive_rudder_turns_the_bow_to_port(boat_factory, angle):
+    params = boat_factory(linear=(500, 4000, 2e4, 1e4, 1e4, 3000))
+    state = initial_state(params, [0.0, 0.0, 0.0])
+    state = rollout(params, state, BoatInputs(throttle=1.0), 5.0)
+    state = rollout(params, state, BoatInputs(throttle=1.0, rudder=angle), 10.0)
+    yaw = quat_to_euler(state.orientation)[2]
+    assert math.copysign(1.0, yaw) == math.copysign(1.0, angle)
+    assert abs(yaw) > math.radians(10)
+
+
+def test_no_speed_no_steering(boat_factory):
+    params = boat_factory(linear=(500, 4000, 2e4, 1e4, 1e4, 3000))
+    state = rollout(params, initial_state(params, [0.0, 0.0, 0.0]), BoatInputs(0.0, 0.5), 5.0)
+    assert abs(quat_to_euler(state.orientation)[2]) < 1e-12
+
+
+def test_same_inputs_give_bit_identical_rollouts(boat_factory):
+    sea = WaveField((WaveComponent(0.4, 20.0, 0.5, 0.8, 0.1),
+                     WaveComponent(0.2, 7.0, -1.0, 0.6, 2.0)))
+    params = boat_factory(linear=(500, 4000, 2e4, 1e4, 1e4, 3000), com=(0, 0, -0.2))
+
+    def run():
+        s = initial_state(params, [1.0, 2.0, 0.0], yaw=0.3)
+        out = []
+        for i in range(1000):
+            s = step(params, s, BoatInputs(1.0 if i < 500 else -0.5, 0.2), sea, DT)
+            out.append(np.concatenate([s.position, s.orientation, s.velocity,
+                                       s.angular_velocity]))
+        return np.array(out)
+
+    a, b = run(), run()
+    assert a.tobytes() == b.tobytes()
+    assert np.all(np.isfinite(a))
+
+
+def test_boat_in_waves_stays_afloat_and_finite(boat_factory):
+    sea = WaveField((WaveComponent(0.6, 20.0, 0.0, 1.0, 0.0),
+                     WaveComponent(0.3, 9.0, 0.8, 0.9, 1.0)))
+    params = boat_factory(linear=(500, 4000, 12000, 6000, 12000, 3000), com=(0, 0, -0.2))
+    s = initial_state(params, [0.0, 0.0, 0.0])
+    zs = []
+    for _ in range(3000):
+        s = step(params, s, BoatInputs(1.0, 0.1), sea, DT)
+        zs.append(reference_pose(params, s)[0][2])
+    roll, pitch, _ = quat_to_euler(s.orientation)
+    assert np.all(np.isfinite(zs))
+    assert max(abs(z) for z in zs) < 1.5  # follows a sea of +-0.9 m, never flies or sinks
+    assert abs(roll) < math.radians(30) and abs(pitch) < math.radians(30)

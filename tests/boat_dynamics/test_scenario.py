@@ -1,0 +1,86 @@
+"""Scenario parsing: the shipped files load; every refusal names key, value and what is allowed."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+from boat_dynamics.boat import reference_pose
+from boat_dynamics.scenario import ScenarioError, load_scenario, parse_scenario
+
+SCENARIOS = sorted((Path(__file__).resolve().parents[2] / "scenarios").glob("*.yaml"))
+
+
+@pytest.mark.parametrize("path", SCENARIOS, ids=[p.name for p in SCENARIOS])
+def test_shipped_scenarios_load(path):
+    sc = load_scenario(path)
+    assert sc.boats
+
+
+def test_default_scenario_is_one_root_boat_on_a_moderate_sea():
+    sc = load_scenario(SCENARIOS[[p.name for p in SCENARIOS].index("default.yaml")])
+    assert [b.name for b in sc.boats] == [""]
+    assert 0.0 < sc.sea.steepness_sum < 0.5
+    assert sc.simulation.rate_hz == 100 and sc.simulation.publish_rate_hz == 50
+    pos, _ = reference_pose(sc.boats[0].params, sc.boats[0].initial)
+    assert pos.tolist() == [0.0, 0.0, 0.0]
+
+
+def test_empty_scenario_is_one_boat_on_a_flat_sea():
+    sc = parse_scenario({})
+    assert len(sc.boats) == 1 and sc.sea.is_flat
+    assert sc.boats[0].params.mass == pytest.approx(0.5 * 1025 * 8.0)
+
+
+def test_density_derives_mass():
+    sc = parse_scenario({"boats": [{"density": 300.0}]})
+    assert sc.boats[0].params.mass == pytest.approx(300.0 * 8.0)
+
+
+@pytest.mark.parametrize(
+    ("data", "key", "fragment"),
+    [
+        ({"simulation": {"rate_hz": 0}}, "simulation.rate_hz", "[1, 10000]"),
+        ({"simulation": {"rate_hz": 100, "publish_rate_hz": 200}},
+         "simulation.publish_rate_hz", "(0, 100]"),
+        ({"simulation": {"realtime": "yes"}}, "simulation.realtime", "true or false"),
+        ({"simulation": {"frobnicate": 1}}, "simulation.frobnicate", "unknown key"),
+        ({"ocean": {"components": [{"amplitude": 0.1, "wavelength": -3}]}},
+         "ocean.components[0].wavelength", "(0, inf]"),
+        ({"ocean": {"components": [{"amplitude": 3.0, "wavelength": 10, "steepness": 1}]}},
+         "ocean.components", "crests loop"),
+        ({"ocean": {"depth": -2}}, "ocean.depth", "(0, inf]"),
+        ({"boats": [{"mass": -5}]}, "boats[0].mass", "(0, inf]"),
+        ({"boats": [{"mass": "heavy"}]}, "boats[0].mass", "number"),
+        ({"boats": [{"mass": 1000, "density": 500}]}, "boats[0].density", "not both"),
+        ({"boats": [{"hull": {"length": math.nan}}]}, "boats[0].hull.length", "finite"),
+        ({"boats": [{"hull": {"type": "mesh"}}]}, "boats[0].hull.type", "not implemented yet"),
+        ({"boats": [{"center_of_mass": [0, 0]}]}, "boats[0].center_of_mass", "3 numbers"),
+        ({"boats": [{"rudder": {"model": "banana"}}]}, "boats[0].rudder.model",
+         "one of: lift"),
+        ({"boats": [{"name": "a"}, {"name": "a"}]}, "boats[1].name", "unique"),
+        ({"boats": [{"name": "a"}, {}]}, "boats[1].name", "needs a name"),
+        ({"boats": [{"name": "my boat"}]}, "boats[0].name", "ROS name"),
+        ({"boats": [{"commands": [{"t": 5, "thrust": 1}, {"t": 2, "thrust": 0}]}]},
+         "boats[0].commands[1].t", "later than"),
+        ({"boats": [{"commands": [{"t": 0, "thrust": 2}]}]}, "boats[0].commands[0].thrust",
+         "[-1, 1]"),
+        ({"boats": []}, "boats", "non-empty"),
+        ({"ocean": {"spectrum": {"type": "jonswap"}}}, "ocean.spectrum", "not implemented yet"),
+    ],
+)
+def test_refusals_name_key_value_and_allowed(data, key, fragment):
+    with pytest.raises(ScenarioError) as info:
+        parse_scenario(data)
+    assert info.value.key == key
+    assert str(info.value).startswith(f"{key}: ")
+    assert fragment in info.value.allowed
+
+
+def test_bad_yaml_and_missing_file(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("boats: [\n  {mass: 3\n")
+    with pytest.raises(ScenarioError, match="valid YAML"):
+        load_scenario(bad)
+    with pytest.raises(ScenarioError, match="readable file"):
+        load_scenario(tmp_path / "missing.yaml")

@@ -1,0 +1,115 @@
+"""ROS end-to-end fixtures: an isolated domain, `boatsim` subprocesses, a probe node.
+
+Every test here runs on a ROS_DOMAIN_ID of its own (derived from the pytest process id) with
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, and stops every process it starts.
+"""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+DOMAIN_ID = str(30 + os.getpid() % 70)
+os.environ["ROS_DOMAIN_ID"] = DOMAIN_ID
+os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+os.environ.pop("ROS_LOCALHOST_ONLY", None)
+
+import rclpy  # noqa: E402  (after the environment is set)
+from rclpy.executors import SingleThreadedExecutor  # noqa: E402
+
+pytestmark = pytest.mark.ros
+
+
+class Boatsim:
+    """A `boatsim` subprocess whose output goes to a file (no pipe can fill up)."""
+
+    def __init__(self, args, tmp_path: Path, name: str = "boatsim") -> None:
+        self.log_path = tmp_path / f"{name}.log"
+        self._log = open(self.log_path, "w")
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "boat_dynamics", *args],
+            stdout=self._log, stderr=subprocess.STDOUT, cwd=ROOT, env=os.environ.copy(),
+        )
+
+    def output(self) -> str:
+        if not self._log.closed:
+            self._log.flush()
+        return self.log_path.read_text()
+
+    def wait(self, timeout: float) -> int:
+        try:
+            return self.proc.wait(timeout=timeout)
+        finally:
+            self._log.close()
+
+    def stop(self, sig=signal.SIGINT, timeout: float = 15.0) -> int:
+        """Send ``sig``, wait; kill if it does not exit in ``timeout`` s. Returns the status."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(sig)
+            try:
+                self.proc.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        self._log.close()
+        return self.proc.returncode
+
+
+@pytest.fixture
+def boatsim(tmp_path):
+    started = []
+
+    def start(*args, name="boatsim"):
+        sim = Boatsim(list(args), tmp_path, name=f"{name}{len(started)}")
+        started.append(sim)
+        return sim
+
+    yield start
+    for sim in started:
+        sim.stop(signal.SIGKILL if sim.proc.poll() is None else signal.SIGINT, timeout=5)
+
+
+class Probe:
+    """A test-side node with helpers to spin until a condition holds."""
+
+    def __init__(self) -> None:
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context)
+        self.node = rclpy.create_node("probe", context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+
+    def spin_for(self, seconds: float) -> None:
+        end = time.monotonic() + seconds
+        while (left := end - time.monotonic()) > 0:
+            self.executor.spin_once(timeout_sec=min(left, 0.05))
+
+    def spin_until(self, predicate, timeout: float, what: str = "condition") -> None:
+        end = time.monotonic() + timeout
+        while not predicate():
+            if time.monotonic() > end:
+                raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+            self.executor.spin_once(timeout_sec=0.05)
+
+    def call(self, client, request, timeout: float = 10.0):
+        assert client.wait_for_service(timeout_sec=timeout), "service not available"
+        future = client.call_async(request)
+        self.spin_until(future.done, timeout, "service response")
+        return future.result()
+
+    def close(self) -> None:
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+
+
+@pytest.fixture
+def probe():
+    p = Probe()
+    yield p
+    p.close()

@@ -1,0 +1,201 @@
+"""`boatsim run` end to end over ROS 2: commands in, odometry out, ocean topic and service."""
+
+import math
+import signal
+
+import numpy as np
+import pytest
+from boat_msgs.msg import WaveField
+from boat_msgs.srv import SampleSurface
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import Point
+from nav_msgs.msg import Odometry
+from std_msgs.msg import Float64
+
+from boat_dynamics.rigid_body import quat_to_euler
+from boat_msgs_py import names
+from boat_msgs_py.convert import seconds_to_time, time_to_seconds, wave_field_from_msg
+from boat_msgs_py.qos import WAVE_FIELD_QOS
+from ocean_sim.waves import sample_surface
+
+
+def _yaw(odom):
+    o = odom.pose.pose.orientation
+    return quat_to_euler(np.array([o.x, o.y, o.z, o.w]))[2]
+
+
+def _xy(odom):
+    p = odom.pose.pose.position
+    return np.array([p.x, p.y])
+
+
+def test_thrust_moves_the_boat_forward_and_rudder_turns_it_to_port(boatsim, probe):
+    sim = boatsim("run")
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
+    rudder = probe.node.create_publisher(Float64, "/cmd_rudder", 10)
+    probe.spin_until(lambda: len(odoms) > 5, 30.0, "/odom")
+    assert odoms[-1].header.frame_id == "world"
+    assert odoms[-1].child_frame_id == "base_link"
+    start = odoms[-1]
+
+    def drive(throttle, angle, seconds):
+        for _ in range(round(seconds * 10)):
+            thrust.publish(Float64(data=throttle))
+            rudder.publish(Float64(data=angle))
+            probe.spin_for(0.1)
+
+    drive(1.0, 0.0, 5.0)
+    mid = odoms[-1]
+    heading = np.array([math.cos(_yaw(start)), math.sin(_yaw(start))])
+    advance = float((_xy(mid) - _xy(start)) @ heading)
+    assert advance > 3.0, f"moved only {advance:.2f} m ahead in 5 s at full thrust"
+    assert mid.twist.twist.linear.x > 1.0  # body-frame surge speed
+    assert abs(math.remainder(_yaw(mid) - _yaw(start), 2 * math.pi)) < math.radians(5)
+
+    drive(1.0, 0.3, 7.0)
+    end = odoms[-1]
+    turned = math.remainder(_yaw(end) - _yaw(mid), 2 * math.pi)
+    assert turned > math.radians(15), f"turned {math.degrees(turned):.1f} deg to port"
+    # the stream kept its rate: about 50 Hz over the run
+    span = time_to_seconds(end.header.stamp) - time_to_seconds(start.header.stamp)
+    received = [o for o in odoms if time_to_seconds(o.header.stamp) > time_to_seconds(
+        start.header.stamp)]
+    assert len(received) / span == pytest.approx(50.0, rel=0.1)
+    assert sim.stop() == 0
+    assert "Traceback" not in sim.output()
+
+
+def test_bad_commands_are_refused_with_a_warning_and_the_sim_keeps_running(boatsim, probe):
+    sim = boatsim("run", "--fast")
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
+    rudder = probe.node.create_publisher(Float64, "/cmd_rudder", 10)
+    probe.spin_until(lambda: len(odoms) > 5, 30.0, "/odom")
+    for _ in range(10):
+        thrust.publish(Float64(data=math.nan))
+        rudder.publish(Float64(data=5.0))
+        probe.spin_for(0.05)
+    n = len(odoms)
+    probe.spin_until(lambda: len(odoms) > n + 20, 10.0, "more /odom after bad commands")
+    assert all(math.isfinite(o.pose.pose.position.x) for o in odoms)
+    assert sim.stop() == 0
+    out = sim.output()
+    assert "/cmd_thrust: ignored nan: must be a finite number in [-1, 1]" in out
+    assert "/cmd_rudder: clamped 5 to 0.610865: allowed range is [-0.610865, 0.610865] rad" in out
+    assert "Traceback" not in out
+
+
+def test_late_joiner_gets_wave_field_and_service_matches_the_library(boatsim, probe):
+    sim = boatsim("run")
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    probe.spin_until(lambda: len(odoms) > 50, 30.0, "/odom")  # running for a while
+
+    fields = []
+    probe.node.create_subscription(WaveField, names.WAVE_FIELD, fields.append, WAVE_FIELD_QOS)
+    probe.spin_until(lambda: fields, 10.0, "/ocean/wave_field for a late joiner")
+    sea = wave_field_from_msg(fields[0])
+    assert len(sea.components) == 3 and sea.gravity == 9.81 and math.isinf(sea.depth)
+    epoch = time_to_seconds(fields[0].header.stamp)  # published at simulation time 0
+
+    client = probe.node.create_client(SampleSurface, names.SAMPLE_SURFACE)
+    rng = np.random.default_rng(7)
+    xy = rng.uniform(-80, 80, size=(500, 2))
+    t = 12.5
+    request = SampleSurface.Request(stamp=seconds_to_time(epoch + t),
+                                    points=[Point(x=x, y=y) for x, y in xy.tolist()])
+    response = probe.call(client, request)
+    assert response.success, response.message
+    expected = sample_surface(sea, xy, t)
+    assert np.abs(np.array(response.heights) - expected.heights).max() < 1e-6
+    normals = np.array([(v.x, v.y, v.z) for v in response.normals])
+    velocities = np.array([(v.x, v.y, v.z) for v in response.velocities])
+    assert np.abs(normals - expected.normals).max() < 1e-6
+    assert np.abs(velocities - expected.velocities).max() < 1e-6
+    assert np.std(response.heights) > 0.1  # a real sea, not a flat answer
+
+    empty = probe.call(client, SampleSurface.Request())
+    assert empty.success and list(empty.heights) == []
+    bad = probe.call(client, SampleSurface.Request(
+        stamp=Time(), points=[Point(x=1.0, y=2.0), Point(x=math.nan, y=0.0)]))
+    assert not bad.success and "points[1]" in bad.message and "not finite" in bad.message
+    assert sim.stop() == 0
+
+
+def test_fast_run_with_duration_records_every_message(boatsim, tmp_path):
+    from rosbags.highlevel import AnyReader
+
+    bag = tmp_path / "bag"
+    sim = boatsim("run", "--fast", "--duration", "20", "--record", str(bag))
+    assert sim.wait(timeout=120) == 0, sim.output()
+    out = sim.output()
+    assert "Traceback" not in out
+    counts = {}
+    with AnyReader([bag]) as reader:
+        for conn in reader.connections:
+            counts[conn.topic] = counts.get(conn.topic, 0) + conn.msgcount
+        last = None
+        for conn, stamp, raw in reader.messages(
+                connections=[c for c in reader.connections if c.topic == "/odom"]):
+            last = (stamp, reader.deserialize(raw, conn.msgtype))
+    assert (bag / "metadata.yaml").exists()
+    # step 0 plus every due step of 2,000: odom at 50 Hz, wrenches at 10 Hz, /clock every step
+    assert counts["/odom"] == counts["/pose"] == counts["/twist"] == 1001
+    for source in names.WRENCH_SOURCES:
+        assert counts[f"/wrench/{source}"] == 201
+    assert counts["/clock"] == 2001
+    assert counts["/ocean/wave_field"] == 1
+    stamp, odom = last
+    assert stamp == 20_000_000_000 == odom.header.stamp.sec * 10**9 + odom.header.stamp.nanosec
+
+
+def test_ctrl_c_stops_cleanly_and_finalizes_the_bag(boatsim, probe, tmp_path):
+    from rosbags.highlevel import AnyReader
+
+    bag = tmp_path / "bag"
+    sim = boatsim("run", "--record", str(bag))
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    probe.spin_until(lambda: len(odoms) > 100, 30.0, "/odom")
+    assert sim.stop(signal.SIGINT) == 0
+    out = sim.output()
+    assert "Traceback" not in out and "wrote" in out
+    with AnyReader([bag]) as reader:
+        n = sum(c.msgcount for c in reader.connections if c.topic == "/odom")
+    assert n >= 100
+
+
+def test_sigterm_stops_cleanly(boatsim, probe):
+    sim = boatsim("run", "--fast")
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    probe.spin_until(lambda: len(odoms) > 10, 30.0, "/odom")
+    assert sim.stop(signal.SIGTERM) == 0
+    assert "Traceback" not in sim.output()
+
+
+@pytest.mark.parametrize(
+    ("content", "fragment"),
+    [
+        ("boats:\n  - {mass: -3}\n", "boats[0].mass: -3.0 is not allowed: must be in (0, inf] kg"),
+        ("ocean: {components: [{amplitude: 0.1, wavelength: 0}]}\n",
+         "ocean.components[0].wavelength: 0.0 is not allowed"),
+        ("boats: [\n", "must be valid YAML"),
+    ],
+)
+def test_invalid_scenario_exits_2_naming_the_key(boatsim, tmp_path, content, fragment):
+    path = tmp_path / "bad.yaml"
+    path.write_text(content)
+    sim = boatsim("run", str(path))
+    assert sim.wait(timeout=30) == 2
+    out = sim.output()
+    assert fragment in out and "Traceback" not in out
+
+
+def test_existing_record_directory_is_refused(boatsim, tmp_path):
+    sim = boatsim("run", "--fast", "--duration", "1", "--record", str(tmp_path))
+    assert sim.wait(timeout=30) == 2
+    assert "already exists" in sim.output()
