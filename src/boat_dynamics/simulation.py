@@ -78,12 +78,14 @@ class _Status:
         self._wall0 = time.monotonic()
         self._next = self._wall0 + self._period
         self._written = False
+        self._last_t: float | None = None
 
     def update(self, node: DynamicsNode, t: float, force: bool = False) -> None:
         now = time.monotonic()
-        if not force and now < self._next:
+        if (not force and now < self._next) or t == self._last_t:
             return
         self._next = now + self._period
+        self._last_t = t
         boat = node.boats[0]
         pos, q = reference_pose(boat.spec.params, boat.state)
         speed = math.hypot(boat.state.velocity[0], boat.state.velocity[1])

@@ -199,3 +199,31 @@ def test_existing_record_directory_is_refused(boatsim, tmp_path):
     sim = boatsim("run", "--fast", "--duration", "1", "--record", str(tmp_path))
     assert sim.wait(timeout=30) == 2
     assert "already exists" in sim.output()
+
+
+def test_thrust_stops_after_cmd_timeout_without_commands(boatsim, probe, tmp_path):
+    flat = tmp_path / "flat.yaml"
+    flat.write_text("boats:\n  - damping: {linear: [500, 4000, 12000, 6000, 12000, 3000]}\n")
+    sim = boatsim("run", str(flat), "--fast")
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
+    probe.spin_until(lambda: len(odoms) > 5, 30.0, "/odom")
+    probe.spin_until(lambda: thrust.get_subscription_count() > 0, 10.0, "command subscriber")
+    thrust.publish(Float64(data=1.0))  # once, then silence
+
+    def stamp(o):
+        return time_to_seconds(o.header.stamp)
+
+    t_cmd = stamp(odoms[-1])
+    probe.spin_until(lambda: stamp(odoms[-1]) > t_cmd + 20.0, 30.0, "20 s of simulation")
+    speeds = [(stamp(o), o.twist.twist.linear.x) for o in odoms if stamp(o) > t_cmd]
+    pushed = [t for t, u in speeds if u > 1e-6]
+    assert pushed, "the command never reached the boat"
+    peak_t, peak = max(speeds, key=lambda s: s[1])
+    # full thrust for cmd_timeout = 1 s from rest: u = T/b (1 - exp(-b t / m)) = 0.44 m/s
+    assert peak == pytest.approx(2000 / 500 * (1 - math.exp(-500 * 1.0 / 4100)), rel=0.05)
+    assert peak_t - pushed[0] == pytest.approx(1.0, abs=0.05)
+    assert speeds[-1][1] < 0.5 * peak  # then drag slows it down
+    assert sim.stop() == 0
+    assert "/cmd_thrust: no command for 1 s; thrust set to 0" in sim.output()
