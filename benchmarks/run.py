@@ -6,6 +6,10 @@ real-time factor of `boatsim run --fast` (in-process, no subscribers).
 
 from __future__ import annotations
 
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as `boatsim` does (see cli.py)
+
 import argparse
 import math
 import time
@@ -36,14 +40,24 @@ def _sea(n: int, seed: int = 0) -> WaveField:
 
 
 def bench_waves() -> None:
-    """Time sample_surface at the issue's two sizes."""
-    print("== wave queries: sample_surface (heights, normals, velocities; inversion included)")
-    for points, comps, repeats in ((1_000, 60, 20), (100_000, 16, 3)):
+    """Time sample_surface at the issue's two sizes, each precision, with/without inversion."""
+    print("== wave queries: sample_surface (heights, normals, velocities), "
+          f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}")
+    for points, comps, repeats in ((1_000, 60, 30), (100_000, 16, 3)):
         sea = _sea(comps)
         xy = np.random.default_rng(1).uniform(-200, 200, (points, 2))
-        sec = _best_of(lambda sea=sea, xy=xy: sample_surface(sea, xy, 123.4), repeats)
-        print(f"  {points:>7} points x {comps:>2} components: {sec * 1e3:9.3f} ms  "
-              f"({sec / (points * comps) * 1e9:6.1f} ns per point-component)")
+        ref = sample_surface(sea, xy, 123.4).heights
+        for precision in ("float64", "float32"):
+            for invert in (True, False):
+                def query(sea=sea, xy=xy, precision=precision, invert=invert):
+                    return sample_surface(sea, xy, 123.4, precision=precision, invert=invert)
+
+                sec = _best_of(query, repeats)
+                err = np.abs(query().heights - ref).max()
+                label = "inverted" if invert else "ignore horizontal"
+                print(f"  {points:>7} pts x {comps:>2} comps, {precision}, {label:<17}: "
+                      f"{sec * 1e3:8.3f} ms ({sec / (points * comps) * 1e9:6.1f} ns/point-comp),"
+                      f" max height error {err:.1e} m")
 
 
 def bench_boat_step() -> None:

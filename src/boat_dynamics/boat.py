@@ -65,6 +65,7 @@ class BoatParams:
     rudder: LiftRudder
     water_density: float = WATER_DENSITY
     gravity: float = GRAVITY
+    min_wavelength: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -170,7 +171,7 @@ def evaluate_forces(
     pts_world = ref + params.buoyancy.points @ rot.T
     # One surface query: the buoyancy points, then the hull reference point (water velocity).
     query = np.vstack([pts_world[:, :2], ref[None, :2]])
-    surface = sample_surface(sea, query, state.t)
+    surface = sample_surface(sea, query, state.t, min_wavelength=params.min_wavelength)
     depths = surface.heights[:-1] - pts_world[:, 2]
     water_velocity_body = rot.T @ surface.velocities[-1]
     relative_velocity = state.velocity - water_velocity_body

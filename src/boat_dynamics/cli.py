@@ -7,8 +7,14 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 from collections.abc import Sequence
+
+# One BLAS thread, set before numpy loads (unless the user set it): the wave kernels make many
+# small matrix products, and OpenBLAS waking its threads for each one made a 1,000-point x
+# 60-component surface query 1.6x slower on the 2-core reference machine (benchmarks/run.py).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 __all__ = ["main"]
 

@@ -23,6 +23,7 @@ from boat_dynamics.hull import BoxHull
 from boat_dynamics.propulsion import Propulsion
 from boat_dynamics.rudder import LiftRudder
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.waves import InvalidSeaStateError, WaveComponent, WaveField
 
 __all__ = [
@@ -243,9 +244,7 @@ def _ocean(raw: Any, sim: SimulationSettings) -> WaveField:
     _only(d, key, ("depth", "components", "spectrum"))
     depth = _number(d, "depth", key, math.inf, 0.0, math.inf, low_open=True, unit="m",
                     allow_inf=True)
-    if d.get("spectrum") is not None:
-        raise ScenarioError(f"{key}.spectrum", d["spectrum"],
-                            "generated sea states are not implemented yet; use ocean.components")
+    generated = _spectrum(d.get("spectrum"), sim, depth)
     comps_raw = d.get("components") or []
     if not isinstance(comps_raw, list):
         raise ScenarioError(f"{key}.components", comps_raw, "must be a list of components")
@@ -262,14 +261,63 @@ def _ocean(raw: Any, sim: SimulationSettings) -> WaveField:
             phase=_number(cd, "phase", ck, 0.0, unit="rad"),
         ))
     try:
-        return WaveField(tuple(comps), gravity=sim.gravity, depth=depth)
+        return WaveField(tuple(comps) + generated, gravity=sim.gravity, depth=depth)
     except InvalidSeaStateError as exc:
+        if generated and exc.key == "components":
+            raise ScenarioError(key, exc.value, "components and spectrum together: "
+                                + exc.allowed) from exc
         raise ScenarioError(f"{key}.{exc.key}", exc.value, exc.allowed) from exc
+
+
+_SPECTRUM_KEYS = ("type", "significant_height", "peak_period", "beaufort", "direction_deg",
+                  "spreading", "components", "gamma", "steepness")
+
+
+def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComponent, ...]:
+    """Components generated from ``ocean.spectrum`` (empty if absent)."""
+    if raw is None:
+        return ()
+    key = "ocean.spectrum"
+    d = _mapping(raw, key)
+    _only(d, key, _SPECTRUM_KEYS)
+    kind = _choice(d, "type", key, "jonswap", SPECTRUM_TYPES)
+    spreading = d.get("spreading", 10.0)
+    if spreading is not None:
+        spreading = _number(d, "spreading", key, 10.0, 0.0, 1000.0)
+    n = d.get("components", 16)
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 1000:
+        raise ScenarioError(f"{key}.components", n, "must be an integer in [1, 1000]")
+    direction = math.radians(_number(d, "direction_deg", key, 0.0, -360.0, 360.0, unit="deg"))
+    steepness = _number(d, "steepness", key, 0.5, 0.0, 1.0)
+    try:
+        if "beaufort" in d:
+            for other in ("significant_height", "peak_period", "gamma"):
+                if other in d:
+                    raise ScenarioError(f"{key}.{other}", d[other],
+                                        "give either beaufort or significant_height/peak_period")
+            if kind != "pierson_moskowitz" and "type" in d:
+                raise ScenarioError(f"{key}.type", kind,
+                                    "a beaufort sea is pierson_moskowitz (fully developed)")
+            sea = beaufort_sea(d["beaufort"], direction, spreading, n, steepness, sim.seed,
+                               sim.gravity, depth)
+        else:
+            spec = SpectrumSpec(
+                type=kind,
+                significant_height=_number(d, "significant_height", key, 1.0, 0.0, 30.0,
+                                           unit="m"),
+                peak_period=_number(d, "peak_period", key, 6.0, 0.5, 40.0, unit="s"),
+                direction=direction, spreading=spreading, components=n,
+                gamma=_number(d, "gamma", key, 3.3, 1.0, 7.0), steepness=steepness,
+            )
+            sea = generate_sea(spec, seed=sim.seed, gravity=sim.gravity, depth=depth)
+    except InvalidSeaStateError as exc:
+        raise ScenarioError(f"ocean.{exc.key}", exc.value, exc.allowed) from exc
+    return sea.components
 
 
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
-              "commands")
+              "commands", "min_wavelength")
 
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool) -> BoatSpec:
@@ -364,6 +412,7 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool) -> BoatSpec:
         damping_linear=linear, damping_quadratic=quadratic, added_mass=added,
         propulsion=propulsion, rudder=rudder,
         water_density=sim.water_density, gravity=sim.gravity,
+        min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
     )
     initial = initial_state(
         params,

@@ -66,7 +66,18 @@ def test_density_derives_mass():
         ({"boats": [{"commands": [{"t": 0, "thrust": 2}]}]}, "boats[0].commands[0].thrust",
          "[-1, 1]"),
         ({"boats": []}, "boats", "non-empty"),
-        ({"ocean": {"spectrum": {"type": "jonswap"}}}, "ocean.spectrum", "not implemented yet"),
+        ({"ocean": {"spectrum": {"type": "bretschneider"}}}, "ocean.spectrum.type",
+         "jonswap, pierson_moskowitz"),
+        ({"ocean": {"spectrum": {"significant_height": -1}}}, "ocean.spectrum.significant_height",
+         "[0, 30] m"),
+        ({"ocean": {"spectrum": {"beaufort": 13}}}, "ocean.spectrum.beaufort", "[0, 12]"),
+        ({"ocean": {"spectrum": {"beaufort": 5, "peak_period": 7}}},
+         "ocean.spectrum.peak_period", "either beaufort"),
+        ({"ocean": {"spectrum": {"components": 0}}}, "ocean.spectrum.components", "[1, 1000]"),
+        ({"ocean": {"spectrum": {"steepness": 1.0, "significant_height": 2.0},
+                    "components": [{"amplitude": 1.0, "wavelength": 8.0, "steepness": 1.0}]}},
+         "ocean", "components and spectrum together"),
+        ({"boats": [{"min_wavelength": -1}]}, "boats[0].min_wavelength", "[0, 10000] m"),
     ],
 )
 def test_refusals_name_key_value_and_allowed(data, key, fragment):
@@ -84,3 +95,28 @@ def test_bad_yaml_and_missing_file(tmp_path):
         load_scenario(bad)
     with pytest.raises(ScenarioError, match="readable file"):
         load_scenario(tmp_path / "missing.yaml")
+
+
+def test_spectrum_and_components_combine_and_the_seed_sets_the_phases():
+    data = {"simulation": {"seed": 3},
+            "ocean": {"depth": 30.0,
+                      "components": [{"amplitude": 0.2, "wavelength": 40.0}],
+                      "spectrum": {"type": "jonswap", "significant_height": 1.5,
+                                   "peak_period": 7.0, "direction_deg": 90, "components": 12}}}
+    a, b = parse_scenario(data), parse_scenario(data)
+    assert len(a.sea.components) == 13 and a.sea.depth == 30.0
+    assert a.sea == b.sea
+    data["simulation"]["seed"] = 4
+    c = parse_scenario(data)
+    assert [x.phase for x in c.sea.components[1:]] != [x.phase for x in a.sea.components[1:]]
+
+
+def test_beaufort_preset():
+    sc = parse_scenario({"ocean": {"spectrum": {"beaufort": 6, "components": 32}}})
+    a = sc.sea.arrays.a
+    assert 4 * math.sqrt(float((a**2).sum()) / 2) == pytest.approx(3.0, rel=0.05)
+
+
+def test_min_wavelength_reaches_the_boat():
+    sc = parse_scenario({"boats": [{"min_wavelength": 5.0}]})
+    assert sc.boats[0].params.min_wavelength == 5.0

@@ -15,6 +15,7 @@ from ocean_sim.waves import (
     displace,
     find_rest_positions,
     sample_surface,
+    stokes_drift,
     surface_height,
 )
 
@@ -142,7 +143,7 @@ def test_refused_sea_states_name_the_key(kwargs, key):
 
 
 @st.composite
-def admissible_seas(draw):
+def admissible_seas(draw, max_ak=math.inf):
     n = draw(st.integers(1, 6))
     budget = draw(st.floats(0.05, 1.0))
     comps = []
@@ -152,7 +153,7 @@ def admissible_seas(draw):
         q = draw(st.floats(0.0, 1.0))
         k = 2 * math.pi / lam
         a_max = budget * w / sum(weights) / max(q * k, 1e-9)
-        a = min(draw(st.floats(0.0, 1.0)) * a_max, 5.0)
+        a = min(draw(st.floats(0.0, 1.0)) * a_max, 5.0, max_ak / k)
         comps.append(WaveComponent(a, lam, draw(st.floats(-math.pi, math.pi)), q,
                                    draw(st.floats(0, 2 * math.pi))))
     depth = draw(st.one_of(st.just(math.inf), st.floats(0.5, 500.0)))
@@ -166,3 +167,57 @@ def test_inversion_residual_below_1mm_for_admissible_seas(sea, t, seed):
     p0 = find_rest_positions(sea, xy, t)
     residual = np.abs(displace(sea, p0, t)[:, :2] - xy).max()
     assert residual < 1e-6  # the documented tolerance is 1e-7 m; 1 mm is the requirement
+
+
+@settings(max_examples=60, deadline=None)
+@given(sea=admissible_seas(max_ak=0.45), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16))
+def test_float32_queries_agree_with_float64_to_a_tenth_of_a_millimetre(sea, t, seed):
+    # physically possible waves: a k <= 0.45 (Stokes limit H / lambda = 1/7); the float32
+    # phase error grows as 2^-24 * sum(a k) * (distance from the batch centre)
+    xy = np.random.default_rng(seed).uniform(-300, 300, size=(64, 2)) + 5000.0
+    a = sample_surface(sea, xy, t)
+    b = sample_surface(sea, xy, t, precision="float32")
+    assert np.abs(a.heights - b.heights).max() < 1e-4
+    assert np.abs(a.normals - b.normals).max() < 1e-4
+    assert np.abs(displace(sea, b.rest_xy, t)[:, :2] - xy).max() < 1e-4
+
+
+def test_ignore_horizontal_displacement_uses_the_query_point_as_rest_position():
+    rng = np.random.default_rng(5)
+    xy = rng.uniform(-50, 50, size=(100, 2))
+    approx = sample_surface(STEEP_SEA, xy, 3.0, invert=False)
+    assert np.array_equal(approx.rest_xy, xy)
+    assert np.allclose(approx.heights, displace(STEEP_SEA, xy, 3.0)[:, 2], atol=1e-12)
+    exact = sample_surface(STEEP_SEA, xy, 3.0)
+    assert np.abs(approx.heights - exact.heights).max() > 0.05  # it is an approximation
+
+
+def test_min_wavelength_leaves_out_short_components():
+    long_only = WaveField(STEEP_SEA.components[:2], depth=STEEP_SEA.depth)
+    xy = np.random.default_rng(6).uniform(-50, 50, size=(50, 2))
+    a = sample_surface(STEEP_SEA, xy, 2.0, min_wavelength=10.0)
+    b = sample_surface(long_only, xy, 2.0)
+    assert np.array_equal(a.heights, b.heights)
+    assert STEEP_SEA.filtered(10.0) is STEEP_SEA.filtered(10.0)  # cached
+    assert STEEP_SEA.filtered(0.0) is STEEP_SEA
+
+
+def test_stokes_drift_closed_form():
+    a, lam = 0.5, 30.0
+    k = 2 * math.pi / lam
+    w = math.sqrt(9.81 * k)
+    deep = WaveField((WaveComponent(a, lam, math.pi / 2, 0.5, 0.0),))
+    assert np.allclose(stokes_drift(deep), [0.0, w * k * a * a], atol=1e-15)
+    assert stokes_drift(deep, 2.0)[1] == pytest.approx(w * k * a * a * math.exp(-4 * k))
+    # finite depth: omega k a^2 cosh(2kh) / (2 sinh^2(kh)), larger than deep water at the surface
+    h = 5.0
+    shallow = WaveField((WaveComponent(a, lam, 0.0, 0.5, 0.0),), depth=h)
+    ws = math.sqrt(9.81 * k * math.tanh(k * h))
+    expected = ws * k * a * a * math.cosh(2 * k * h) / (2 * math.sinh(k * h) ** 2)
+    assert stokes_drift(shallow)[0] == pytest.approx(expected, rel=1e-12)
+    assert stokes_drift(WaveField()).tolist() == [0.0, 0.0]
+
+
+def test_unknown_precision_is_refused():
+    with pytest.raises(ValueError, match="precision 'float16' is not allowed"):
+        sample_surface(STEEP_SEA, [[0.0, 0.0]], 0.0, precision="float16")
