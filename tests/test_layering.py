@@ -29,7 +29,8 @@ def test_every_core_module_is_listed():
     from pathlib import Path
 
     src = Path(__file__).resolve().parents[1] / "src"
-    adapters = {"ocean_sim.node", "boat_dynamics.node", "boat_dynamics.simulation",
+    adapters = {"ocean_sim.node", "ocean_sim.client", "boat_dynamics.node",
+                "boat_dynamics.simulation",
                 "boat_dynamics.recording", "boat_dynamics.cli", "boat_dynamics.__main__"}
     modules = {
         ".".join(p.relative_to(src).with_suffix("").parts)

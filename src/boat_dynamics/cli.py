@@ -44,7 +44,53 @@ def _parser() -> argparse.ArgumentParser:
                      help="stop after S seconds of simulated time")
     run.add_argument("--record", metavar="DIR",
                      help="write every topic to a rosbag2 (MCAP) bag in the new directory DIR")
+    query = verbs.add_parser(
+        "query", help="ask the running ocean for the surface at points",
+        description="Print height, normal and water velocity at world points (x, y) from "
+                    "/ocean/sample_surface of a running simulation.")
+    query.add_argument("coords", nargs="+", type=_finite, metavar="X Y",
+                       help="world coordinates, m (pairs: X Y [X Y ...])")
+    query.add_argument("--time", type=_finite, metavar="T", dest="sim_time",
+                       help="simulation time to sample at, s (default: the ocean's now)")
+    query.add_argument("--timeout", type=_positive_seconds, default=5.0, metavar="S",
+                       help="seconds to wait for the ocean (default 5)")
     return parser
+
+
+def _finite(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite number")
+    return value
+
+
+def _query(args: argparse.Namespace) -> int:
+    from ocean_sim.client import OceanUnavailableError, query_surface
+
+    if len(args.coords) % 2:
+        print(f"boatsim query: error: coordinates come in X Y pairs; got {len(args.coords)} "
+              "numbers", file=sys.stderr)
+        return 2
+    points = list(zip(args.coords[::2], args.coords[1::2], strict=True))
+    try:
+        result = query_surface(points, args.sim_time, args.timeout)
+    except OceanUnavailableError as exc:
+        print(f"boatsim query: error: {exc}; is `boatsim run` running on this ROS_DOMAIN_ID?",
+              file=sys.stderr)
+        return 1
+    r = result.response
+    if not r.success:
+        print(f"boatsim query: error: the ocean refused: {r.message}", file=sys.stderr)
+        return 2
+    when = "now" if args.sim_time is None else f"t = {args.sim_time:g} s"
+    print(f"# surface at {when}: x y [m]  height [m]  normal (x y z)  velocity [m/s] (x y z)")
+    for (x, y), h, n, v in zip(points, r.heights, r.normals, r.velocities, strict=True):
+        print(f"{x:10.3f} {y:10.3f}  {h:9.4f}  ({n.x:8.5f} {n.y:8.5f} {n.z:8.5f})  "
+              f"({v.x:7.4f} {v.y:7.4f} {v.z:7.4f})")
+    return 0
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -73,6 +119,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.verb == "run":
             return _run(args)
+        if args.verb == "query":
+            return _query(args)
     except KeyboardInterrupt:
         return 0
     return 2

@@ -157,6 +157,10 @@ class DynamicsNode(Node):
             f"{names.boat_topic(spec.name, names.ODOM)}")
         return boat
 
+    def boat_positions(self) -> np.ndarray:
+        """(K, 2) m, world x, y of every boat's hull reference point."""
+        return np.array([reference_pose(b.spec.params, b.state)[0][:2] for b in self.boats])
+
     # ------------------------------------------------------------------ callbacks
 
     def _on_wave_field(self, msg: WaveFieldMsg) -> None:

@@ -133,8 +133,9 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     nodes = []
     display = _Status(status, len(scenario.boats))
     try:
-        ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap)
         dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap)
+        ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
+                          surface_centers=dynamics.boat_positions)
         nodes = [ocean, dynamics]
         recorder = None
         if bag is not None:
@@ -154,6 +155,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         if stop.is_set():
             return 0
         dynamics.publish_outputs()
+        ocean.advance(clock.t)
         dynamics.get_logger().info(
             f"running {scenario.source}: {len(scenario.boats)} boat(s) at {sim.rate_hz:g} Hz, "
             f"{'as fast as possible (/clock published)' if fast else 'real time'}"
@@ -163,6 +165,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         next_discovery = wall0 + _DISCOVERY_PERIOD
         while (duration is None or clock.t < duration - 0.5 / sim.rate_hz) and not stop.is_set():
             dynamics.advance()
+            ocean.advance(clock.t)
             if fast:
                 _spin_pending(executor)
             else:

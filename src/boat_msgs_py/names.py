@@ -12,6 +12,7 @@ __all__ = [
     "ODOM",
     "POSE",
     "SAMPLE_SURFACE",
+    "SURFACE_CLOUD",
     "TWIST",
     "WAVE_FIELD",
     "WORLD_FRAME",
@@ -31,6 +32,8 @@ WRENCH_SOURCES = ("buoyancy", "damping", "thrust", "rudder", "total")
 
 WAVE_FIELD = "/ocean/wave_field"
 SAMPLE_SURFACE = "/ocean/sample_surface"
+#: sensor_msgs/PointCloud2 of the surface around the boats, for viewers (RViz, Foxglove).
+SURFACE_CLOUD = "/ocean/surface"
 CLOCK = "/clock"
 
 WORLD_FRAME = "world"

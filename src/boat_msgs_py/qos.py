@@ -8,7 +8,14 @@ from __future__ import annotations
 
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
-__all__ = ["CLOCK_QOS", "COMMAND_QOS", "DIAGNOSTICS_QOS", "STATE_QOS", "WAVE_FIELD_QOS"]
+__all__ = [
+    "CLOCK_QOS",
+    "COMMAND_QOS",
+    "DIAGNOSTICS_QOS",
+    "STATE_QOS",
+    "SURFACE_QOS",
+    "WAVE_FIELD_QOS",
+]
 
 #: cmd_thrust / cmd_rudder subscriptions: reliable, last 10; matches a plain
 #: ``create_publisher(Float64, "/cmd_thrust", 10)``.
@@ -34,6 +41,12 @@ WAVE_FIELD_QOS = QoSProfile(
 
 #: /clock: reliable, last 1 (serves rclpy's best-effort time source subscription too).
 CLOCK_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=1,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)
+
+#: /ocean/surface point clouds: reliable, last 1 (a viewer wants the latest surface only).
+SURFACE_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_LAST, depth=1,
     reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
 )

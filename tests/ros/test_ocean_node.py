@@ -1,0 +1,134 @@
+"""The ocean node over ROS: sea state as parameters, /ocean/surface, `boatsim query`."""
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+from boat_msgs.msg import WaveField
+from boat_msgs.srv import SampleSurface
+from rcl_interfaces.msg import Parameter as ParameterMsg
+from rcl_interfaces.msg import ParameterType, ParameterValue
+from rcl_interfaces.srv import GetParameters, SetParameters, SetParametersAtomically
+from sensor_msgs.msg import PointCloud2
+
+from boat_msgs_py import names
+from boat_msgs_py.convert import time_to_seconds, wave_field_from_msg
+from boat_msgs_py.qos import WAVE_FIELD_QOS
+from ocean_sim.waves import sample_surface
+
+
+def _double_array(name, values):
+    return ParameterMsg(name=name, value=ParameterValue(
+        type=ParameterType.PARAMETER_DOUBLE_ARRAY, double_array_value=list(values)))
+
+
+def _double(name, value):
+    return ParameterMsg(name=name, value=ParameterValue(
+        type=ParameterType.PARAMETER_DOUBLE, double_value=value))
+
+
+def _fields(probe):
+    fields = []
+    probe.node.create_subscription(WaveField, names.WAVE_FIELD, fields.append, WAVE_FIELD_QOS)
+    probe.spin_until(lambda: fields, 30.0, "/ocean/wave_field")
+    return fields
+
+
+def test_sea_state_parameters_change_at_run_time_and_bad_changes_are_refused(boatsim, probe):
+    sim = boatsim("run", "--fast")
+    fields = _fields(probe)
+    assert len(fields[0].components) == 3
+    get = probe.node.create_client(GetParameters, "/ocean/get_parameters")
+    current = probe.call(get, GetParameters.Request(names=["components.amplitude", "depth"]))
+    assert list(current.values[0].double_array_value) == [0.3, 0.15, 0.08]
+    assert math.isinf(current.values[1].double_value)
+
+    atomically = probe.node.create_client(SetParametersAtomically,
+                                          "/ocean/set_parameters_atomically")
+    new = [_double_array("components.amplitude", [0.5, 0.2]),
+           _double_array("components.wavelength", [30.0, 10.0]),
+           _double_array("components.direction", [1.0, 0.0]),
+           _double_array("components.steepness", [0.6, 0.3]),
+           _double_array("components.phase", [0.0, 1.0]),
+           _double("depth", 40.0)]
+    result = probe.call(atomically, SetParametersAtomically.Request(parameters=new)).result
+    assert result.successful, result.reason
+    probe.spin_until(lambda: len(fields) >= 2, 10.0, "the new wave field")
+    sea = wave_field_from_msg(fields[-1])
+    assert [c.amplitude for c in sea.components] == [0.5, 0.2] and sea.depth == 40.0
+
+    # the service answers with the new sea
+    client = probe.node.create_client(SampleSurface, names.SAMPLE_SURFACE)
+    epoch = time_to_seconds(fields[-1].header.stamp)
+    from geometry_msgs.msg import Point
+
+    from boat_msgs_py.convert import seconds_to_time
+    xy = np.array([[3.0, 4.0], [-20.0, 7.5]])
+    answer = probe.call(client, SampleSurface.Request(
+        stamp=seconds_to_time(epoch + 2.0), points=[Point(x=x, y=y) for x, y in xy]))
+    expected = sample_surface(sea, xy, 2.0, precision="float32")
+    assert np.abs(np.array(answer.heights) - expected.heights).max() < 1e-9
+
+    # refusals: the reason names the key and the value; the old sea stays
+    single = probe.node.create_client(SetParameters, "/ocean/set_parameters")
+    cases = [
+        ([_double_array("components.wavelength", [30.0, -1.0])],
+         "components[1].wavelength = -1.0 is not allowed: must be > 0 (m)"),
+        ([_double_array("components.amplitude", [0.5, 0.2, 0.1])],
+         "component arrays must have the same length"),
+        ([_double_array("components.amplitude", [8.0, 0.2])], "crests loop"),  # sum Q k a 1.04
+        ([_double("depth", -3.0)], "depth = -3.0 is not allowed"),
+    ]
+    for params, reason in cases:
+        res = probe.call(single, SetParameters.Request(parameters=params)).results[0]
+        assert not res.successful and reason in res.reason, res.reason
+    probe.spin_for(0.3)
+    assert wave_field_from_msg(fields[-1]) == sea  # nothing new published
+    again = probe.call(get, GetParameters.Request(names=["components.amplitude"]))
+    assert list(again.values[0].double_array_value) == [0.5, 0.2]
+    assert sim.stop() == 0
+    out = sim.output()
+    assert "new sea state: 2 components" in out and "updated sea state" in out
+
+
+def test_surface_cloud_is_the_surface_around_the_boat(boatsim, probe):
+    sim = boatsim("run", "--fast")
+    fields = _fields(probe)
+    sea = wave_field_from_msg(fields[0])
+    clouds = []
+    probe.node.create_subscription(PointCloud2, names.SURFACE_CLOUD, clouds.append, 10)
+    probe.spin_until(lambda: clouds, 30.0, "/ocean/surface")
+    cloud = clouds[0]
+    assert cloud.header.frame_id == "world"
+    assert [f.name for f in cloud.fields] == ["x", "y", "z", "normal_x", "normal_y", "normal_z"]
+    pts = np.frombuffer(bytes(cloud.data), dtype=np.float32).reshape(-1, 6)
+    assert pts.shape[0] == cloud.width == 41 * 41  # 40 m at 1 m, around the one boat
+    assert abs(pts[:, 0].mean()) < 5 and abs(pts[:, 1].mean()) < 5
+    t = time_to_seconds(cloud.header.stamp) - time_to_seconds(fields[0].header.stamp)
+    expected = sample_surface(sea, pts[:, :2].astype(float), t)
+    assert np.abs(pts[:, 2] - expected.heights).max() < 1e-4
+    assert np.abs(pts[:, 3:] - expected.normals).max() < 1e-4
+    assert sim.stop() == 0
+
+
+def test_boatsim_query_prints_the_library_numbers(boatsim, probe):
+    sim = boatsim("run")
+    fields = _fields(probe)
+    sea = wave_field_from_msg(fields[0])
+    out = subprocess.run([sys.executable, "-m", "boat_dynamics", "query", "3", "-4", "12.5",
+                          "8", "--time", "7.5"], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    rows = [line.split() for line in out.stdout.splitlines() if not line.startswith("#")]
+    assert len(rows) == 2
+    expected = sample_surface(sea, np.array([[3.0, -4.0], [12.5, 8.0]]), 7.5)
+    for row, h in zip(rows, expected.heights, strict=True):
+        assert float(row[2]) == round(float(h), 4) or abs(float(row[2]) - h) <= 6e-5
+    assert sim.stop() == 0
+
+
+def test_boatsim_query_without_an_ocean_exits_1():
+    out = subprocess.run([sys.executable, "-m", "boat_dynamics", "query", "1", "2",
+                          "--timeout", "1"], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 1
+    assert "did not answer within 1 s" in out.stderr and "Traceback" not in out.stderr
