@@ -126,6 +126,9 @@ def test_late_joiner_gets_wave_field_and_service_matches_the_library(boatsim, pr
     bad = probe.call(client, SampleSurface.Request(
         stamp=Time(), points=[Point(x=1.0, y=2.0), Point(x=math.nan, y=0.0)]))
     assert not bad.success and "points[1]" in bad.message and "not finite" in bad.message
+    too_many = probe.call(client, SampleSurface.Request(points=[Point()] * 100_001), timeout=30)
+    assert not too_many.success
+    assert too_many.message == "100001 points requested; at most 100000 per call"
     assert sim.stop() == 0
 
 
