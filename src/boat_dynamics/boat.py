@@ -14,6 +14,7 @@ import numpy as np
 from boat_dynamics.buoyancy import SamplePointBuoyancy, sample_point_buoyancy
 from boat_dynamics.damping import damping
 from boat_dynamics.hull import BoxHull
+from boat_dynamics.mesh_buoyancy import MeshBuoyancy, mesh_buoyancy
 from boat_dynamics.propulsion import Propulsion, thrust
 from boat_dynamics.rigid_body import integrate, quat_from_euler, rotation_matrix
 from boat_dynamics.rudder import LiftRudder, rudder_lift
@@ -38,11 +39,11 @@ class BoatParams:
     """Everything constant about one boat.
 
     Attributes:
-        hull: the hull geometry.
+        hull: the hull's bounding box (the hull itself for a box hull).
         mass: kg, > 0.
         center_of_mass: (3,) m, body frame, relative to the hull reference point.
         inertia: (3,) kg m^2, principal moments about the centre of mass (body axes).
-        buoyancy: the buoyancy model parameters.
+        buoyancy: the buoyancy model: mesh (pressure on hull triangles) or sample points.
         damping_linear: (6,) N/(m/s) and N m/(rad/s), per body DOF.
         damping_quadratic: (6,) N/(m/s)^2 and N m/(rad/s)^2, per body DOF.
         added_mass: (6,) kg and kg m^2, per body DOF (diagonal).
@@ -57,7 +58,7 @@ class BoatParams:
     mass: float
     center_of_mass: np.ndarray
     inertia: np.ndarray
-    buoyancy: SamplePointBuoyancy
+    buoyancy: MeshBuoyancy | SamplePointBuoyancy
     damping_linear: np.ndarray
     damping_quadratic: np.ndarray
     added_mass: np.ndarray
@@ -168,17 +169,22 @@ def evaluate_forces(
     rot = rotation_matrix(state.orientation)
     com = params.center_of_mass
     ref = state.position - rot @ com
-    pts_world = ref + params.buoyancy.points @ rot.T
-    # One surface query: the buoyancy points, then the hull reference point (water velocity).
+    model = params.buoyancy
+    is_mesh = isinstance(model, MeshBuoyancy)
+    pts_world = ref + (model.mesh.vertices if is_mesh else model.points) @ rot.T
+    # One surface query: the hull vertices / sample points, then the hull reference point.
     query = np.vstack([pts_world[:, :2], ref[None, :2]])
     surface = sample_surface(sea, query, state.t, min_wavelength=params.min_wavelength)
     depths = surface.heights[:-1] - pts_world[:, 2]
     water_velocity_body = rot.T @ surface.velocities[-1]
     relative_velocity = state.velocity - water_velocity_body
 
-    buoy = sample_point_buoyancy(
-        params.buoyancy, depths, rot, com, params.water_density, params.gravity
-    )
+    if is_mesh:
+        buoy = mesh_buoyancy(model, pts_world, depths, rot, state.position,
+                             params.water_density, params.gravity)
+    else:
+        buoy = sample_point_buoyancy(model, depths, rot, com, params.water_density,
+                                     params.gravity)
     damp = damping(
         params.damping_linear, params.damping_quadratic, relative_velocity, state.angular_velocity
     )

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BoxHull"]
+__all__ = ["BoxHull", "HullMesh", "HullMeshError", "box_mesh", "check_mesh", "load_mesh"]
 
 
 @dataclass(frozen=True)
@@ -56,3 +56,167 @@ class BoxHull:
         ys = (np.arange(ny) + 0.5) / ny * self.beam - self.beam / 2
         gx, gy = np.meshgrid(xs, ys, indexing="ij")
         return np.stack([gx.ravel(), gy.ravel(), np.full(nx * ny, -self.height / 2)], axis=1)
+
+
+class HullMeshError(ValueError):
+    """A hull mesh that cannot be used (not watertight, degenerate, inside out, wrong units)."""
+
+
+@dataclass(frozen=True)
+class HullMesh:
+    """A closed, outward-oriented triangle mesh of a hull.
+
+    Attributes:
+        vertices: (V, 3) m, body frame, origin at the hull reference point (bounding-box centre).
+        faces: (F, 3) vertex indices, counter-clockwise seen from outside.
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+    @property
+    def corners(self) -> np.ndarray:
+        """(F, 3, 3) m, the triangles' vertex positions."""
+        return self.vertices[self.faces]
+
+    @property
+    def areas(self) -> np.ndarray:
+        """(F,) m^2 triangle areas."""
+        c = self.corners
+        return 0.5 * np.linalg.norm(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]), axis=1)
+
+    @property
+    def volume(self) -> float:
+        """Enclosed volume, m^3 (divergence theorem; > 0 for outward faces)."""
+        c = self.corners
+        return float(np.einsum("ij,ij->i", c[:, 0], np.cross(c[:, 1], c[:, 2])).sum() / 6.0)
+
+    @property
+    def extents(self) -> np.ndarray:
+        """(3,) m, size of the bounding box along x, y, z."""
+        return self.vertices.max(axis=0) - self.vertices.min(axis=0)
+
+    def solid_inertia(self, mass: float) -> np.ndarray:
+        """Principal-axis moments (3,) kg m^2 of a uniform solid of ``mass`` about its centroid.
+
+        Body-axis diagonal of the inertia tensor (products of inertia are dropped: hulls are
+        symmetric about their centre plane). Source: Eberly, "Polyhedral Mass Properties"
+        (2002), the signed-tetrahedron integrals.
+        """
+        c = self.corners
+        a, b, d = c[:, 0], c[:, 1], c[:, 2]
+        det = np.einsum("ij,ij->i", a, np.cross(b, d))  # 6 x signed tetrahedron volume
+        vol = det.sum() / 6.0
+        centroid = (det[:, None] * (a + b + d)).sum(axis=0) / (24.0 * vol)
+        # second moments of each tetrahedron (origin, a, b, d): integral of x_i^2
+        sq = (a * a + b * b + d * d + a * b + b * d + d * a)
+        second = (det[:, None] * sq).sum(axis=0) / 60.0  # integral of x^2, y^2, z^2 dV
+        second = second / vol * mass - mass * centroid**2  # about the centroid
+        return np.array([second[1] + second[2], second[0] + second[2], second[0] + second[1]])
+
+
+def _box_face_grid(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Unit-square grid (n x n quads, 2 triangles each): (V, 2) coordinates and (F, 3) faces."""
+    ticks = np.linspace(0.0, 1.0, n + 1)
+    u, v = np.meshgrid(ticks, ticks, indexing="ij")
+    uv = np.stack([u.ravel(), v.ravel()], axis=1)
+    idx = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
+    a, b, c, d = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
+    faces = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                            np.stack([a, c, d], -1).reshape(-1, 3)])
+    return uv, faces
+
+
+def box_mesh(hull: BoxHull, subdivisions: int = 1) -> HullMesh:
+    """Watertight triangle mesh of a box hull, each face an n x n grid of quads (2 n^2 triangles).
+
+    ``subdivisions = 1`` gives the 12-triangle box; more let the waterline follow the waves
+    across a face.
+    """
+    half = np.array([hull.length, hull.beam, hull.height]) / 2.0
+    uv, grid_faces = _box_face_grid(subdivisions)
+    verts, faces = [], []
+    # each face: (normal axis, sign, u axis, v axis) with u x v = outward normal
+    for axis, sign in ((0, 1), (0, -1), (1, 1), (1, -1), (2, 1), (2, -1)):
+        u_axis, v_axis = [(1, 2), (2, 0), (0, 1)][axis]
+        if sign < 0:
+            u_axis, v_axis = v_axis, u_axis
+        p = np.zeros((uv.shape[0], 3))
+        p[:, axis] = sign * half[axis]
+        p[:, u_axis] = (uv[:, 0] * 2 - 1) * half[u_axis]
+        p[:, v_axis] = (uv[:, 1] * 2 - 1) * half[v_axis]
+        faces.append(grid_faces + sum(len(v) for v in verts))
+        verts.append(p)
+    vertices = np.concatenate(verts)
+    faces = np.concatenate(faces)
+    # merge the duplicated edge vertices so the mesh is watertight
+    rounded = np.round(vertices / (1e-9 + half.min()) * 1e6).astype(np.int64)
+    unique, inverse = np.unique(rounded, axis=0, return_inverse=True)
+    merged = np.zeros((unique.shape[0], 3))
+    merged[inverse.ravel()] = vertices
+    return HullMesh(merged, inverse.ravel()[faces])
+
+
+def check_mesh(mesh: HullMesh, source: str = "mesh") -> None:
+    """Refuse meshes the buoyancy model cannot use.
+
+    Raises:
+        HullMeshError: degenerate triangles, open or inconsistently oriented (not watertight)
+            surface, inward-facing triangles, or a size that suggests wrong units.
+    """
+    if mesh.faces.size == 0:
+        raise HullMeshError(f"{source}: has no triangles")
+    areas = mesh.areas
+    size = float(np.max(mesh.extents))
+    tiny = np.flatnonzero(areas <= 1e-12 * max(size, 1e-9) ** 2)
+    if tiny.size:
+        raise HullMeshError(f"{source}: {tiny.size} degenerate triangle(s) of zero area "
+                            f"(first: triangle {tiny[0]}); repair the mesh")
+    directed = np.concatenate([mesh.faces[:, [0, 1]], mesh.faces[:, [1, 2]],
+                               mesh.faces[:, [2, 0]]])
+    undirected = np.sort(directed, axis=1)
+    _, counts = np.unique(undirected, axis=0, return_counts=True)
+    _, dcounts = np.unique(directed, axis=0, return_counts=True)
+    if np.any(counts != 2) or np.any(dcounts != 1):
+        open_edges = int(np.sum(counts == 1))
+        raise HullMeshError(f"{source}: not watertight ({open_edges} open edge(s), "
+                            f"{int(np.sum(counts > 2))} edge(s) shared by more than two "
+                            "triangles, or inconsistent triangle orientation); buoyancy from "
+                            "pressure needs a closed hull")
+    if mesh.volume <= 0.0:
+        raise HullMeshError(f"{source}: triangles face inward (volume {mesh.volume:.4g} m^3); "
+                            "flip the face orientation")
+    if size > 500.0 or size < 0.05:
+        raise HullMeshError(f"{source}: spans {size:.4g} m; expected 0.05 to 500 m. Wrong "
+                            "units? Set hull.scale (e.g. 0.001 for a mesh in millimetres)")
+
+
+def load_mesh(path: str, scale: float = 1.0) -> HullMesh:
+    """Read an STL or OBJ hull with trimesh, scale it, centre its bounding box, check it.
+
+    Args:
+        path: file path.
+        scale: factor to metres (0.001 for millimetres).
+
+    Raises:
+        HullMeshError: unreadable file or a mesh that :func:`check_mesh` refuses.
+    """
+    import trimesh  # imported here: only mesh files need it
+
+    try:
+        loaded = trimesh.load(path, force="mesh", process=False)
+    except Exception as exc:  # trimesh raises many types for bad files
+        raise HullMeshError(f"{path}: cannot read a triangle mesh ({exc})") from exc
+    vertices = np.asarray(loaded.vertices, dtype=float) * scale
+    faces = np.asarray(loaded.faces, dtype=np.int64)
+    if vertices.size == 0:
+        raise HullMeshError(f"{path}: has no triangles")
+    # merge coincident vertices (STL stores each triangle's corners separately)
+    rounded = np.round(vertices / max(float(np.ptp(vertices)), 1e-9) * 1e9).astype(np.int64)
+    _, first, inverse = np.unique(rounded, axis=0, return_index=True, return_inverse=True)
+    vertices = vertices[first]
+    faces = inverse.ravel()[faces]
+    centre = (vertices.max(axis=0) + vertices.min(axis=0)) / 2.0
+    mesh = HullMesh(vertices - centre, faces)
+    check_mesh(mesh, path)
+    return mesh

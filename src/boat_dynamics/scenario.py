@@ -19,7 +19,8 @@ import yaml
 from boat_dynamics.boat import BoatParams, BoatState, initial_state
 from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.commands import CommandScript
-from boat_dynamics.hull import BoxHull
+from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
 from boat_dynamics.rudder import LiftRudder
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
@@ -133,7 +134,7 @@ def load_scenario(path: str | Path) -> Scenario:
         mark = getattr(exc, "problem_mark", None)
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "somewhere"
         raise ScenarioError("file", str(p), f"must be valid YAML (error at {where})") from exc
-    return parse_scenario({} if data is None else data, source=str(p))
+    return parse_scenario({} if data is None else data, source=str(p), base_dir=p.parent)
 
 
 # --------------------------------------------------------------------------- readers
@@ -320,7 +321,8 @@ _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "b
               "commands", "min_wavelength")
 
 
-def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool) -> BoatSpec:
+def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
+          base_dir: Path) -> BoatSpec:
     d = _mapping(raw, key)
     _only(d, key, _BOAT_KEYS)
     name = d.get("name", "" if lone else None)
@@ -333,26 +335,52 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool) -> BoatSpec:
 
     hk = f"{key}.hull"
     hd = _mapping(d.get("hull"), hk)
-    _only(hd, hk, ("type", "length", "beam", "height", "path"))
-    _choice(hd, "type", hk, "box", ("box",), later=("mesh",))
-    hull = BoxHull(
-        length=_number(hd, "length", hk, 4.0, 0.0, 1000.0, low_open=True, unit="m"),
-        beam=_number(hd, "beam", hk, 2.0, 0.0, 1000.0, low_open=True, unit="m"),
-        height=_number(hd, "height", hk, 1.0, 0.0, 1000.0, low_open=True, unit="m"),
-    )
+    _only(hd, hk, ("type", "length", "beam", "height", "subdivisions", "path", "scale"))
+    hull_type = _choice(hd, "type", hk, "box", ("box", "mesh"))
+    if hull_type == "box":
+        for extra in ("path", "scale"):
+            if extra in hd:
+                raise ScenarioError(f"{hk}.{extra}", hd[extra], "only for hull type mesh")
+        hull = BoxHull(
+            length=_number(hd, "length", hk, 4.0, 0.0, 1000.0, low_open=True, unit="m"),
+            beam=_number(hd, "beam", hk, 2.0, 0.0, 1000.0, low_open=True, unit="m"),
+            height=_number(hd, "height", hk, 1.0, 0.0, 1000.0, low_open=True, unit="m"),
+        )
+        subdivisions = hd.get("subdivisions", 1)
+        if (isinstance(subdivisions, bool) or not isinstance(subdivisions, int)
+                or not 1 <= subdivisions <= 64):
+            raise ScenarioError(f"{hk}.subdivisions", subdivisions,
+                                "must be an integer in [1, 64] (quads per box face edge)")
+        mesh = box_mesh(hull, subdivisions)
+    else:
+        for extra in ("length", "beam", "height", "subdivisions"):
+            if extra in hd:
+                raise ScenarioError(f"{hk}.{extra}", hd[extra],
+                                    "only for hull type box (a mesh has its own size)")
+        path = hd.get("path")
+        if not isinstance(path, str) or not path:
+            raise ScenarioError(f"{hk}.path", path, "must be the path of an STL or OBJ file")
+        full = Path(path) if Path(path).is_absolute() else base_dir / path
+        scale = _number(hd, "scale", hk, 1.0, 0.0, 1e3, low_open=True)
+        try:
+            mesh = load_mesh(str(full), scale)
+        except HullMeshError as exc:
+            raise ScenarioError(f"{hk}.path", path, str(exc)) from exc
+        hull = BoxHull(*(float(e) for e in mesh.extents))
+    volume = mesh.volume
 
     if "mass" in d and "density" in d:
         raise ScenarioError(f"{key}.density", d["density"],
                             "give either mass or density, not both (the other is derived)")
     if "density" in d:
         density = _number(d, "density", key, 0.0, 0.0, math.inf, low_open=True, unit="kg/m^3")
-        mass = density * hull.volume
+        mass = density * volume
     else:
-        mass = _number(d, "mass", key, 0.5 * sim.water_density * hull.volume, 0.0, math.inf,
+        mass = _number(d, "mass", key, 0.5 * sim.water_density * volume, 0.0, math.inf,
                        low_open=True, unit="kg")
     com = _vector(d, "center_of_mass", key, 3, [0.0, 0.0, 0.0])
     inertia_raw = d.get("inertia")
-    inertia = (hull.solid_inertia(mass) if inertia_raw is None
+    inertia = (mesh.solid_inertia(mass) if inertia_raw is None
                else _vector(d, "inertia", key, 3, [1.0, 1.0, 1.0], low=0.0))
     if np.any(inertia <= 0.0):
         raise ScenarioError(f"{key}.inertia", inertia_raw, "every moment must be > 0 (kg m^2)")
@@ -360,14 +388,19 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool) -> BoatSpec:
     bk = f"{key}.buoyancy"
     bd = _mapping(d.get("buoyancy"), bk)
     _only(bd, bk, ("model", "grid"))
-    _choice(bd, "model", bk, "sample_points", ("sample_points",), later=("mesh",))
-    grid = bd.get("grid", [5, 3])
-    if (not isinstance(grid, list) or len(grid) != 2
-            or not all(isinstance(g, int) and not isinstance(g, bool) and 1 <= g <= 100
-                       for g in grid)):
-        raise ScenarioError(f"{bk}.grid", grid, "must be [nx, ny], integers in [1, 100]")
-    buoyancy = SamplePointBuoyancy(points=hull.bottom_grid(*grid), volume=hull.volume,
-                                   max_depth=hull.height)
+    buoyancy_model = _choice(bd, "model", bk, "mesh", ("mesh", "sample_points"))
+    if buoyancy_model == "mesh":
+        if "grid" in bd:
+            raise ScenarioError(f"{bk}.grid", bd["grid"], "only for model sample_points")
+        buoyancy = MeshBuoyancy(mesh)
+    else:
+        grid = bd.get("grid", [5, 3])
+        if (not isinstance(grid, list) or len(grid) != 2
+                or not all(isinstance(g, int) and not isinstance(g, bool) and 1 <= g <= 100
+                           for g in grid)):
+            raise ScenarioError(f"{bk}.grid", grid, "must be [nx, ny], integers in [1, 100]")
+        buoyancy = SamplePointBuoyancy(points=hull.bottom_grid(*grid), volume=volume,
+                                       max_depth=hull.height)
 
     dk = f"{key}.damping"
     dd = _mapping(d.get("damping"), dk)
@@ -445,8 +478,12 @@ def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
     return CommandScript(tuple(times), tuple(throttles), tuple(rudders))
 
 
-def parse_scenario(data: Any, source: str = "<scenario>") -> Scenario:
+def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None = None
+                   ) -> Scenario:
     """Validate a scenario given as parsed YAML (nested dicts and lists).
+
+    Relative mesh paths are resolved against ``base_dir`` (the scenario file's directory;
+    default: the current directory).
 
     Raises:
         ScenarioError: an invalid key or value, named by its path.
@@ -462,7 +499,8 @@ def parse_scenario(data: Any, source: str = "<scenario>") -> Scenario:
     if not isinstance(boats_raw, list) or not boats_raw:
         raise ScenarioError("boats", boats_raw, "must be a non-empty list of boats")
     lone = len(boats_raw) == 1
-    boats = tuple(_boat(b, f"boats[{i}]", sim, lone) for i, b in enumerate(boats_raw))
+    base = Path.cwd() if base_dir is None else base_dir
+    boats = tuple(_boat(b, f"boats[{i}]", sim, lone, base) for i, b in enumerate(boats_raw))
     names = [b.name for b in boats]
     for i, n in enumerate(names):
         if names.index(n) != i:

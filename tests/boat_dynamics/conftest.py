@@ -5,22 +5,26 @@ import pytest
 
 from boat_dynamics.boat import BoatParams
 from boat_dynamics.buoyancy import SamplePointBuoyancy
-from boat_dynamics.hull import BoxHull
+from boat_dynamics.hull import BoxHull, box_mesh
+from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
 from boat_dynamics.rudder import LiftRudder
 
 
 def make_boat(length=4.0, beam=2.0, height=1.0, density_ratio=0.5, com=(0.0, 0.0, 0.0),
               linear=(0, 0, 0, 0, 0, 0), quadratic=(0, 0, 0, 0, 0, 0), grid=(5, 3),
-              max_thrust=2000.0, thrust_at=None, rho=1025.0, g=9.81):
+              max_thrust=2000.0, thrust_at=None, rho=1025.0, g=9.81, model="sample_points",
+              subdivisions=1):
     hull = BoxHull(length, beam, height)
     mass = density_ratio * rho * hull.volume
+    buoyancy = (MeshBuoyancy(box_mesh(hull, subdivisions)) if model == "mesh" else
+                SamplePointBuoyancy(hull.bottom_grid(*grid), hull.volume, height))
     return BoatParams(
         hull=hull,
         mass=mass,
         center_of_mass=np.array(com, dtype=float),
         inertia=hull.solid_inertia(mass),
-        buoyancy=SamplePointBuoyancy(hull.bottom_grid(*grid), hull.volume, height),
+        buoyancy=buoyancy,
         damping_linear=np.array(linear, dtype=float),
         damping_quadratic=np.array(quadratic, dtype=float),
         added_mass=np.zeros(6),

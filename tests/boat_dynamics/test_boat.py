@@ -24,11 +24,12 @@ def draft(params, state):
     return params.hull.height / 2 - reference_pose(params, state)[0][2]
 
 
+@pytest.mark.parametrize("model", ["mesh", "sample_points"])
 @pytest.mark.parametrize("ratio", [0.2, 0.5, 0.8])
 @pytest.mark.parametrize("scale", [1.0, 2.0])  # 8x the mass at the same density
-def test_box_floats_at_density_ratio_draft_whatever_its_mass(boat_factory, ratio, scale):
+def test_box_floats_at_density_ratio_draft_whatever_its_mass(boat_factory, model, ratio, scale):
     params = boat_factory(4.0 * scale, 2.0 * scale, 1.0 * scale, density_ratio=ratio,
-                          linear=(0, 0, 2e4 * scale**3, 1e4 * scale**5, 1e4 * scale**5, 0))
+                          model=model)
     # heave damping near critical for quick settling: b = 2 sqrt(k m)
     k = params.water_density * params.gravity * params.hull.waterplane_area
     crit = 2 * math.sqrt(k * params.mass)
@@ -40,16 +41,18 @@ def test_box_floats_at_density_ratio_draft_whatever_its_mass(boat_factory, ratio
     assert abs(state.velocity[2]) < 1e-4
 
 
-def test_mass_times_gravity_equals_buoyancy_at_equilibrium(boat_factory):
-    params = boat_factory(density_ratio=0.35)
+@pytest.mark.parametrize("model", ["mesh", "sample_points"])
+def test_mass_times_gravity_equals_buoyancy_at_equilibrium(boat_factory, model):
+    params = boat_factory(density_ratio=0.35, model=model)
     eq = initial_state(params, [0.0, 0.0, params.hull.height / 2 - 0.35 * params.hull.height])
     forces = evaluate_forces(params, eq, BoatInputs(), FLAT)
     assert forces.buoyancy.force[2] == pytest.approx(params.mass * params.gravity, rel=1e-12)
     assert np.abs(forces.total.force).max() < 1e-9 * params.mass
 
 
-def test_undamped_heave_period(boat_factory):
-    params = boat_factory(density_ratio=0.5)
+@pytest.mark.parametrize("model", ["mesh", "sample_points"])
+def test_undamped_heave_period(boat_factory, model):
+    params = boat_factory(density_ratio=0.5, model=model)
     state = initial_state(params, [0.0, 0.0, 0.05])  # 5 cm above equilibrium
     zs, ts = [], []
     dt = 0.001
