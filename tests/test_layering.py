@@ -9,6 +9,7 @@ CORE = [
     "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.mesh_buoyancy",
     "boat_dynamics.propulsion",
     "boat_dynamics.rigid_body", "boat_dynamics.rudder", "boat_dynamics.scenario",
+    "boat_dynamics.tuning",
     "boat_dynamics.wrench",
 ]
 

@@ -108,7 +108,8 @@ class DynamicsNode(Node):
             description="s without a cmd_thrust message after which thrust is set to 0.",
             floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
         self._rate = sim.rate_hz
-        self._dt = 1.0 / sim.rate_hz
+        self._substeps = sim.substeps
+        self._dt = 1.0 / (sim.rate_hz * sim.substeps)
         self._publish_rate = sim.publish_rate_hz
         self._diag_rate = sim.diagnostics_rate_hz
         self.sea: WaveField | None = None
@@ -219,8 +220,9 @@ class DynamicsNode(Node):
         if self.sea is None:
             raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
         for boat in self.boats:
-            boat.state = step(boat.spec.params, boat.state, self._inputs(boat), self.sea,
-                              self._dt)
+            inputs = self._inputs(boat)
+            for _ in range(self._substeps):
+                boat.state = step(boat.spec.params, boat.state, inputs, self.sea, self._dt)
         self._sim_clock.steps += 1
         self.publish_outputs()
 

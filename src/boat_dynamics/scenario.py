@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -23,6 +23,7 @@ from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
 from boat_dynamics.rudder import LiftRudder
+from boat_dynamics.tuning import critical_damping, equilibrium_height
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.waves import InvalidSeaStateError, WaveComponent, WaveField
@@ -81,6 +82,7 @@ class SimulationSettings:
     gravity: float = GRAVITY
     water_density: float = WATER_DENSITY
     cmd_timeout: float = 1.0
+    substeps: int = 1
 
 
 @dataclass(frozen=True)
@@ -212,7 +214,7 @@ def _simulation(raw: Any) -> SimulationSettings:
     key = "simulation"
     d = _mapping(raw, key)
     _only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
-                   "seed", "gravity", "water_density", "cmd_timeout"))
+                   "seed", "gravity", "water_density", "cmd_timeout", "substeps"))
     rate = _number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = _number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
     diag = _number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
@@ -222,6 +224,9 @@ def _simulation(raw: Any) -> SimulationSettings:
     duration = d.get("duration")
     if duration is not None:
         duration = _number(d, "duration", key, 0.0, 0.0, math.inf, low_open=True, unit="s")
+    substeps = d.get("substeps", 1)
+    if isinstance(substeps, bool) or not isinstance(substeps, int) or not 1 <= substeps <= 100:
+        raise ScenarioError(f"{key}.substeps", substeps, "must be an integer in [1, 100]")
     seed = d.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ScenarioError(f"{key}.seed", seed, "must be an integer >= 0")
@@ -236,6 +241,7 @@ def _simulation(raw: Any) -> SimulationSettings:
         water_density=_number(d, "water_density", key, WATER_DENSITY, 0.0, 1e5, low_open=True,
                               unit="kg/m^3"),
         cmd_timeout=_number(d, "cmd_timeout", key, 1.0, 0.0, 3600.0, low_open=True, unit="s"),
+        substeps=substeps,
     )
 
 
@@ -404,9 +410,14 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
 
     dk = f"{key}.damping"
     dd = _mapping(d.get("damping"), dk)
-    _only(dd, dk, ("linear", "quadratic"))
+    _only(dd, dk, ("linear", "quadratic", "critical_ratio"))
     linear = _vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
     quadratic = _vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0)
+    ratio_default = None if "linear" in dd else list(DEFAULT_CRITICAL_RATIO)
+    ratio_raw = dd.get("critical_ratio", ratio_default)
+    ratio = (None if ratio_raw is None
+             else _vector({"critical_ratio": ratio_raw}, "critical_ratio", dk, 3, [0.0] * 3,
+                          low=0.0))
     added = _vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0)
 
     pk = f"{key}.propulsion"
@@ -447,6 +458,8 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         water_density=sim.water_density, gravity=sim.gravity,
         min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
     )
+    if ratio is not None or "quadratic" not in dd:
+        params = _default_damping(params, dd, ratio, f"{key}.damping")
     initial = initial_state(
         params,
         _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
@@ -456,6 +469,42 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     )
     return BoatSpec(name=name, params=params, initial=initial,
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
+
+
+#: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
+DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
+#: Drag coefficients [surge, sway, heave] of the default quadratic damping 1/2 rho C_d A.
+DEFAULT_DRAG_COEFFICIENTS = (0.5, 1.0, 1.0)
+
+
+def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.ndarray | None,
+                     key: str) -> BoatParams:
+    """Fill the damping the scenario left out with physically derived defaults.
+
+    linear += critical_damping(ratio) (heave, roll, pitch); quadratic, when not given:
+    1/2 rho C_d A on the projected areas at the equilibrium draft d (surge B d, sway L d,
+    heave L B) and, by strip theory of the sway drag along the hull, yaw rho C_d,y d L^4 / 64.
+    """
+    try:
+        z_eq = equilibrium_height(params)
+    except ValueError as exc:
+        raise ScenarioError(key.rsplit(".", 1)[0] + ".mass", params.mass, str(exc)) from exc
+    linear, quadratic = params.damping_linear, params.damping_quadratic
+    if ratio is not None:
+        linear = linear + critical_damping(params, ratio)
+    if "quadratic" not in given:
+        hull = params.hull
+        bottom = float(np.min(params.buoyancy.mesh.vertices[:, 2])
+                       if isinstance(params.buoyancy, MeshBuoyancy) else -hull.height / 2)
+        draft = min(max(-(z_eq + bottom), 0.0), hull.height)
+        cx, cy, cz = DEFAULT_DRAG_COEFFICIENTS
+        half_rho = 0.5 * params.water_density
+        quadratic = np.array([half_rho * cx * hull.beam * draft,
+                              half_rho * cy * hull.length * draft,
+                              half_rho * cz * hull.length * hull.beam,
+                              0.0, 0.0,
+                              params.water_density * cy * draft * hull.length**4 / 64.0])
+    return replace(params, damping_linear=linear, damping_quadratic=quadratic)
 
 
 def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
