@@ -6,7 +6,8 @@ import sys
 CORE = [
     "ocean_sim.constants", "ocean_sim.spectra", "ocean_sim.waves",
     "boat_dynamics.boat", "boat_dynamics.buoyancy", "boat_dynamics.commands",
-    "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.mesh_buoyancy",
+    "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.keel",
+    "boat_dynamics.mesh_buoyancy",
     "boat_dynamics.propulsion",
     "boat_dynamics.rigid_body", "boat_dynamics.rudder", "boat_dynamics.scenario",
     "boat_dynamics.tuning",

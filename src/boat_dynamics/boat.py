@@ -14,13 +14,14 @@ import numpy as np
 from boat_dynamics.buoyancy import SamplePointBuoyancy, sample_point_buoyancy
 from boat_dynamics.damping import damping
 from boat_dynamics.hull import BoxHull
+from boat_dynamics.keel import reflect_off_keel
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy, mesh_buoyancy
-from boat_dynamics.propulsion import Propulsion, thrust
+from boat_dynamics.propulsion import Propulsion, lagged_throttle, thrust
 from boat_dynamics.rigid_body import integrate, quat_from_euler, rotation_matrix
-from boat_dynamics.rudder import LiftRudder, rudder_lift
+from boat_dynamics.rudder import Rudder, rudder_wrench
 from boat_dynamics.wrench import Wrench
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
-from ocean_sim.waves import WaveField, sample_surface
+from ocean_sim.waves import WaveField, sample_surface, stokes_drift
 
 __all__ = [
     "BoatInputs",
@@ -63,10 +64,12 @@ class BoatParams:
     damping_quadratic: np.ndarray
     added_mass: np.ndarray
     propulsion: Propulsion
-    rudder: LiftRudder
+    rudder: Rudder
     water_density: float = WATER_DENSITY
     gravity: float = GRAVITY
     min_wavelength: float = 0.0
+    keel_rate: float = 0.0
+    stokes_drift: bool = False
 
 
 @dataclass(frozen=True)
@@ -79,7 +82,7 @@ class BoatState:
         orientation: (4,) unit quaternion (x, y, z, w), body (FLU) to world.
         velocity: (3,) m/s, velocity of the centre of mass, body frame.
         angular_velocity: (3,) rad/s, body frame.
-
+        throttle: -1..1, the actual thrust fraction (lags the command with a time constant).
     """
 
     t: float
@@ -87,6 +90,7 @@ class BoatState:
     orientation: np.ndarray
     velocity: np.ndarray
     angular_velocity: np.ndarray
+    throttle: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -94,8 +98,8 @@ class BoatInputs:
     """Actuator commands, already validated and within range.
 
     Attributes:
-        throttle: -1..1, fraction of max thrust (negative = reverse).
-        rudder: rad, + turns the bow to port.
+        throttle: -1..1, commanded fraction of max thrust (negative = reverse).
+        rudder: rad, + turns the bow to port (rudder and/or steerable nozzle).
 
     """
 
@@ -176,8 +180,10 @@ def evaluate_forces(
     query = np.vstack([pts_world[:, :2], ref[None, :2]])
     surface = sample_surface(sea, query, state.t, min_wavelength=params.min_wavelength)
     depths = surface.heights[:-1] - pts_world[:, 2]
-    water_velocity_body = rot.T @ surface.velocities[-1]
-    relative_velocity = state.velocity - water_velocity_body
+    water_velocity = surface.velocities[-1]
+    if params.stokes_drift:
+        water_velocity = water_velocity + _stokes(sea.filtered(params.min_wavelength))
+    relative_velocity = state.velocity - rot.T @ water_velocity
 
     if is_mesh:
         buoy = mesh_buoyancy(model, pts_world, depths, rot, state.position,
@@ -188,8 +194,8 @@ def evaluate_forces(
     damp = damping(
         params.damping_linear, params.damping_quadratic, relative_velocity, state.angular_velocity
     )
-    push = thrust(params.propulsion, inputs.throttle, com)
-    steer = rudder_lift(
+    push = thrust(params.propulsion, state.throttle, inputs.rudder, com)
+    steer = rudder_wrench(
         params.rudder, inputs.rudder, float(relative_velocity[0]), params.water_density, com
     )
     weight = Wrench(params.mass * params.gravity * -rot[2, :], np.zeros(3))
@@ -213,6 +219,8 @@ def step(
         The state at t + dt.
 
     """
+    throttle = lagged_throttle(params.propulsion, state.throttle, inputs.throttle, dt)
+    state = replace(state, throttle=throttle)
     total = evaluate_forces(params, state, inputs, sea).total
     p, q, v, w = integrate(
         state.position,
@@ -225,4 +233,13 @@ def step(
         params.inertia + params.added_mass[3:],
         dt,
     )
+    v = reflect_off_keel(v, params.keel_rate, dt)
     return replace(state, t=state.t + dt, position=p, orientation=q, velocity=v, angular_velocity=w)
+
+
+def _stokes(sea: WaveField) -> np.ndarray:
+    """(3,) m/s, the sea's surface Stokes drift (cached on the sea)."""
+    key = ("stokes_drift",)
+    if key not in sea._cache:
+        sea._cache[key] = np.array([*stokes_drift(sea), 0.0])
+    return sea._cache[key]

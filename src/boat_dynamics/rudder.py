@@ -1,50 +1,56 @@
-"""Rudder: a lifting surface at the stern.
+"""Rudder models: physically based lift (default), and the seed notes' arcade variants.
 
-    F_y = -1/2 rho C A u|u| sin(delta),  applied at the rudder position (stern)
-
-``u`` is the surge speed through the water. A positive angle pushes the stern to starboard
-(-y), so the bow turns to port (+yaw, counter-clockwise seen from above) when going ahead, and
-the other way when going astern. No speed, no steering: the physically based model.
-Source: the seed notes, "Model A: Rudder Torque (Realistic)"; Fossen (2011), sec. 9.5.
+- ``lift``: a lifting surface at the stern, F_y = -1/2 rho C A u|u| sin(delta), applied at the
+  rudder position: a positive angle pushes the stern to starboard (-y), so the bow turns to
+  port going ahead (and the other way astern). No speed, no steering. Source: the seed notes,
+  "Model A: Rudder Torque (Realistic)"; Fossen (2011), sec. 9.5.
+- ``torque``: a yaw torque max_torque * delta / max_angle whatever the speed ("Model B:
+  Direct Torque (Arcade)").
+- ``hybrid``: (base_torque + speed_torque * |u| / max_speed) * delta / max_angle ("Model C").
+- ``none``: no rudder (steer with a steerable thruster instead).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from boat_dynamics.wrench import Wrench, wrench_at
+from boat_dynamics.wrench import ZERO_WRENCH, Wrench, wrench_at
 
-__all__ = ["LiftRudder", "rudder_lift"]
+__all__ = ["RUDDER_MODELS", "Rudder", "rudder_wrench"]
+
+RUDDER_MODELS = ("lift", "torque", "hybrid", "none")
 
 
 @dataclass(frozen=True)
-class LiftRudder:
-    """Lift-type rudder parameters.
+class Rudder:
+    """Rudder parameters (each model reads its own).
 
     Attributes:
-        area: A, m^2, > 0.
-        lift_coefficient: C, dimensionless, > 0.
-        position: (3,) m, body frame (relative to the hull reference point), at the stern.
+        model: one of :data:`RUDDER_MODELS`.
         max_angle: rad, the command range is [-max_angle, max_angle].
-
+        area: A, m^2 (lift).
+        lift_coefficient: C (lift).
+        position: (3,) m, body frame, relative to the hull reference point (lift).
+        max_torque: N m at full angle (torque), speed-dependent part at max_speed (hybrid).
+        base_torque: N m at full angle and no speed (hybrid).
+        max_speed: m/s at which the hybrid's speed part is max_torque (hybrid).
     """
 
-    area: float
-    lift_coefficient: float
-    position: np.ndarray
-    max_angle: float
+    model: str = "lift"
+    max_angle: float = np.radians(35.0)
+    area: float = 0.25
+    lift_coefficient: float = 1.0
+    position: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    max_torque: float = 0.0
+    base_torque: float = 0.0
+    max_speed: float = 1.0
 
 
-def rudder_lift(
-    model: LiftRudder,
-    angle: float,
-    surge_speed: float,
-    water_density: float,
-    center_of_mass: np.ndarray,
-) -> Wrench:
-    """Rudder side-force wrench.
+def rudder_wrench(model: Rudder, angle: float, surge_speed: float, water_density: float,
+                  center_of_mass: np.ndarray) -> Wrench:
+    """Rudder wrench about the centre of mass, body frame.
 
     Args:
         model: rudder parameters.
@@ -52,11 +58,15 @@ def rudder_lift(
         surge_speed: u, m/s, body-x speed through the water.
         water_density: rho, kg/m^3.
         center_of_mass: (3,) m, body frame.
-
-    Returns:
-        The rudder wrench about the centre of mass, body frame.
-
     """
-    side = -0.5 * water_density * model.lift_coefficient * model.area
-    side *= surge_speed * abs(surge_speed) * np.sin(angle)
-    return wrench_at(np.array([0.0, side, 0.0]), model.position - center_of_mass)
+    if model.model == "lift":
+        side = -0.5 * water_density * model.lift_coefficient * model.area
+        side *= surge_speed * abs(surge_speed) * np.sin(angle)
+        return wrench_at(np.array([0.0, side, 0.0]), model.position - center_of_mass)
+    fraction = angle / model.max_angle
+    if model.model == "torque":
+        return Wrench(np.zeros(3), np.array([0.0, 0.0, model.max_torque * fraction]))
+    if model.model == "hybrid":
+        torque = model.base_torque + model.max_torque * abs(surge_speed) / model.max_speed
+        return Wrench(np.zeros(3), np.array([0.0, 0.0, torque * fraction]))
+    return ZERO_WRENCH

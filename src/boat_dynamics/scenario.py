@@ -22,7 +22,7 @@ from boat_dynamics.commands import CommandScript
 from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
-from boat_dynamics.rudder import LiftRudder
+from boat_dynamics.rudder import RUDDER_MODELS, Rudder
 from boat_dynamics.tuning import critical_damping, equilibrium_height
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
@@ -196,6 +196,13 @@ def _vector(d: Mapping[str, Any], name: str, key: str, n: int, default: list[flo
     return arr
 
 
+def _flag(d: Mapping[str, Any], name: str, key: str, default: bool) -> bool:
+    v = d.get(name, default)
+    if not isinstance(v, bool):
+        raise ScenarioError(f"{key}.{name}", v, "must be true or false")
+    return v
+
+
 def _choice(d: Mapping[str, Any], name: str, key: str, default: str,
             allowed: tuple[str, ...], later: tuple[str, ...] = ()) -> str:
     path = f"{key}.{name}"
@@ -324,7 +331,7 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
 
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
-              "commands", "min_wavelength")
+              "commands", "min_wavelength", "keel", "stokes_drift")
 
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -422,7 +429,8 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
 
     pk = f"{key}.propulsion"
     pd = _mapping(d.get("propulsion"), pk)
-    _only(pd, pk, ("max_thrust", "position", "direction"))
+    _only(pd, pk, ("max_thrust", "position", "direction", "steerable", "at_center_of_mass",
+                   "time_constant"))
     direction = _vector(pd, "direction", pk, 3, [1.0, 0.0, 0.0])
     norm = float(np.linalg.norm(direction))
     if norm < 1e-9:
@@ -431,19 +439,39 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         max_thrust=_number(pd, "max_thrust", pk, 2000.0, 0.0, 1e8, low_open=True, unit="N"),
         position=_vector(pd, "position", pk, 3, [-hull.length / 2, 0.0, -hull.height / 4]),
         direction=direction / norm,
+        steerable=_flag(pd, "steerable", pk, False),
+        at_center_of_mass=_flag(pd, "at_center_of_mass", pk, False),
+        time_constant=_number(pd, "time_constant", pk, 0.0, 0.0, 600.0, unit="s"),
     )
 
     rk = f"{key}.rudder"
     rd = _mapping(d.get("rudder"), rk)
-    _only(rd, rk, ("model", "max_angle_deg", "area", "lift_coefficient", "position"))
-    _choice(rd, "model", rk, "lift", ("lift",), later=("torque", "hybrid"))
-    rudder = LiftRudder(
+    _only(rd, rk, ("model", "max_angle_deg", "area", "lift_coefficient", "position",
+                   "max_torque", "base_torque", "max_speed"))
+    rudder_model = _choice(rd, "model", rk, "lift", RUDDER_MODELS)
+    needs = {"lift": (), "torque": ("max_torque",), "hybrid": ("max_torque", "base_torque",
+                                                                "max_speed"), "none": ()}
+    for k in needs[rudder_model]:
+        if k not in rd:
+            raise ScenarioError(f"{rk}.{k}", None, f"is required by the {rudder_model} model")
+    rudder = Rudder(
+        model=rudder_model,
+        max_angle=math.radians(_number(rd, "max_angle_deg", rk, 35.0, 0.0, 90.0, low_open=True,
+                                       unit="deg")),
         area=_number(rd, "area", rk, 0.25, 0.0, 1e4, low_open=True, unit="m^2"),
         lift_coefficient=_number(rd, "lift_coefficient", rk, 1.0, 0.0, 10.0, low_open=True),
         position=_vector(rd, "position", rk, 3, [-hull.length / 2, 0.0, -hull.height / 2]),
-        max_angle=math.radians(_number(rd, "max_angle_deg", rk, 35.0, 0.0, 90.0, low_open=True,
-                                       unit="deg")),
+        max_torque=_number(rd, "max_torque", rk, 0.0, 0.0, 1e9, unit="N m"),
+        base_torque=_number(rd, "base_torque", rk, 0.0, 0.0, 1e9, unit="N m"),
+        max_speed=_number(rd, "max_speed", rk, 1.0, 0.0, 1e3, low_open=True, unit="m/s"),
     )
+
+    kk = f"{key}.keel"
+    kd = _mapping(d.get("keel"), kk)
+    _only(kd, kk, ("model", "rate"))
+    keel_model = _choice(kd, "model", kk, "damping", ("damping", "reflection"))
+    keel_rate = (_number(kd, "rate", kk, 1.0, 0.0, 1e3, low_open=True, unit="1/s")
+                 if keel_model == "reflection" else 0.0)
 
     _choice(d, "control_mode", key, "dynamic", ("dynamic",),
             later=("kinematic", "kinematic_heave", "constrained", "blend"))
@@ -457,6 +485,8 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         propulsion=propulsion, rudder=rudder,
         water_density=sim.water_density, gravity=sim.gravity,
         min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
+        keel_rate=keel_rate,
+        stokes_drift=_flag(d, "stokes_drift", key, False),
     )
     if ratio is not None or "quadratic" not in dd:
         params = _default_damping(params, dd, ratio, f"{key}.damping")

@@ -8,7 +8,7 @@ from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.hull import BoxHull, box_mesh
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
-from boat_dynamics.rudder import LiftRudder
+from boat_dynamics.rudder import Rudder
 
 
 def make_boat(length=4.0, beam=2.0, height=1.0, density_ratio=0.5, com=(0.0, 0.0, 0.0),
@@ -31,8 +31,8 @@ def make_boat(length=4.0, beam=2.0, height=1.0, density_ratio=0.5, com=(0.0, 0.0
         propulsion=Propulsion(max_thrust, np.array(thrust_at if thrust_at is not None
                                                    else com, dtype=float),
                               np.array([1.0, 0.0, 0.0])),
-        rudder=LiftRudder(0.25, 1.0, np.array([-length / 2, 0.0, -height / 2]),
-                          np.radians(35.0)),
+        rudder=Rudder("lift", np.radians(35.0), 0.25, 1.0,
+                      np.array([-length / 2, 0.0, -height / 2])),
         water_density=rho,
         gravity=g,
     )
