@@ -12,6 +12,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from boat_dynamics.buoyancy import SamplePointBuoyancy, sample_point_buoyancy
+from boat_dynamics.control import (
+    ControlSettings,
+    Pose,
+    align_with_normal,
+    apply_mode,
+    pd_gains,
+    stable_pd_torque,
+)
 from boat_dynamics.damping import damping
 from boat_dynamics.hull import BoxHull
 from boat_dynamics.keel import reflect_off_keel
@@ -70,6 +78,7 @@ class BoatParams:
     min_wavelength: float = 0.0
     keel_rate: float = 0.0
     stokes_drift: bool = False
+    control: ControlSettings = ControlSettings()
 
 
 @dataclass(frozen=True)
@@ -83,6 +92,7 @@ class BoatState:
         velocity: (3,) m/s, velocity of the centre of mass, body frame.
         angular_velocity: (3,) rad/s, body frame.
         throttle: -1..1, the actual thrust fraction (lags the command with a time constant).
+        control_weight: 0..1, how far the control mode has taken over since it was selected.
     """
 
     t: float
@@ -91,6 +101,7 @@ class BoatState:
     velocity: np.ndarray
     angular_velocity: np.ndarray
     throttle: float = 0.0
+    control_weight: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -222,19 +233,52 @@ def step(
     throttle = lagged_throttle(params.propulsion, state.throttle, inputs.throttle, dt)
     state = replace(state, throttle=throttle)
     total = evaluate_forces(params, state, inputs, sea).total
+    control = params.control
+    torque = total.torque
+    if control.mode == "kinematic" and control.attitude == "pd":
+        normal = _surface_at_reference(params, state, sea, state.t).normals[0]
+        kp, kd = pd_gains(control.pd_frequency, control.pd_damping)
+        target = align_with_normal(state.orientation, normal)
+        pd = stable_pd_torque(state.orientation, state.angular_velocity, target,
+                              params.inertia, kp, kd, dt)
+        torque = torque + pd * np.array([1.0, 1.0, 0.0])  # roll and pitch only
     p, q, v, w = integrate(
         state.position,
         state.orientation,
         state.velocity,
         state.angular_velocity,
         total.force,
-        total.torque,
+        torque,
         params.mass + params.added_mass[:3],
         params.inertia + params.added_mass[3:],
         dt,
     )
     v = reflect_off_keel(v, params.keel_rate, dt)
-    return replace(state, t=state.t + dt, position=p, orientation=q, velocity=v, angular_velocity=w)
+    after = replace(state, t=state.t + dt, position=p, orientation=q, velocity=v,
+                    angular_velocity=w)
+    if control.mode == "dynamic":
+        return after
+    weight = 1.0 if control.transition <= 0 else min(1.0, state.control_weight
+                                                       + dt / control.transition)
+    surface = _surface_at_reference(params, after, sea, after.t)
+    pose = apply_mode(control, _pose(params, state), _pose(params, after), weight,
+                      float(surface.heights[0]), surface.normals[0],
+                      float(surface.velocities[0, 2]), dt)
+    rot = rotation_matrix(pose.orientation)
+    return replace(after, position=pose.ref + rot @ params.center_of_mass,
+                   orientation=pose.orientation, velocity=rot.T @ pose.velocity,
+                   angular_velocity=pose.angular_velocity, control_weight=weight)
+
+
+def _pose(params: BoatParams, state: BoatState) -> Pose:
+    rot = rotation_matrix(state.orientation)
+    return Pose(state.position - rot @ params.center_of_mass, state.orientation,
+                rot @ state.velocity, state.angular_velocity)
+
+
+def _surface_at_reference(params: BoatParams, state: BoatState, sea: WaveField, t: float):
+    ref, _ = reference_pose(params, state)
+    return sample_surface(sea, ref[None, :2], t, min_wavelength=params.min_wavelength)
 
 
 def _stokes(sea: WaveField) -> np.ndarray:

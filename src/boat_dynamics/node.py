@@ -8,19 +8,20 @@ A thin adapter: it checks commands (:mod:`boat_dynamics.commands`), calls the co
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from boat_msgs.msg import WaveField as WaveFieldMsg
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
-from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
+from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 
 from boat_dynamics.boat import BoatInputs, BoatState, Forces, evaluate_forces, reference_pose, step
 from boat_dynamics.commands import check_command
+from boat_dynamics.control import CONTROL_MODES
 from boat_dynamics.scenario import BoatSpec, Scenario
 from boat_msgs_py import names
 from boat_msgs_py.convert import (
@@ -119,6 +120,15 @@ class DynamicsNode(Node):
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
         self.boats = [self._make_boat(spec) for spec in scenario.boats]
+        self._mode_params = {}
+        for boat in self.boats:
+            name = f"{boat.spec.name}.control_mode" if boat.spec.name else "control_mode"
+            self._mode_params[name] = boat
+            self.declare_parameter(name, boat.spec.params.control.mode, ParameterDescriptor(
+                description=f"Control mode of boat {boat.spec.name or '(root)'}: one of "
+                            f"{', '.join(CONTROL_MODES)}; switching ramps in over "
+                            "control.transition s, without a jump."))
+        self.add_on_set_parameters_callback(self._on_set_parameters)
 
     # ------------------------------------------------------------------ set-up
 
@@ -163,6 +173,25 @@ class DynamicsNode(Node):
         return np.array([reference_pose(b.spec.params, b.state)[0][:2] for b in self.boats])
 
     # ------------------------------------------------------------------ callbacks
+
+    def _on_set_parameters(self, params) -> SetParametersResult:
+        for p in params:
+            if p.name in self._mode_params and p.value not in CONTROL_MODES:
+                return SetParametersResult(
+                    successful=False,
+                    reason=f"{p.name} = {p.value!r} is not allowed: one of "
+                           f"{', '.join(CONTROL_MODES)}")
+        for p in params:
+            boat = self._mode_params.get(p.name)
+            if boat is None or p.value == boat.spec.params.control.mode:
+                continue
+            spec = boat.spec
+            control = replace(spec.params.control, mode=p.value)
+            boat.spec = replace(spec, params=replace(spec.params, control=control))
+            boat.state = replace(boat.state, control_weight=0.0)
+            self.get_logger().info(f"{p.name}: now {p.value} (taking over in "
+                                   f"{control.transition:g} s)")
+        return SetParametersResult(successful=True)
 
     def _on_wave_field(self, msg: WaveFieldMsg) -> None:
         try:

@@ -19,6 +19,7 @@ import yaml
 from boat_dynamics.boat import BoatParams, BoatState, initial_state
 from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.commands import CommandScript
+from boat_dynamics.control import CONTROL_MODES, ControlSettings
 from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
@@ -331,7 +332,7 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
 
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
-              "commands", "min_wavelength", "keel", "stokes_drift")
+              "commands", "min_wavelength", "keel", "stokes_drift", "control")
 
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -473,8 +474,7 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     keel_rate = (_number(kd, "rate", kk, 1.0, 0.0, 1e3, low_open=True, unit="1/s")
                  if keel_model == "reflection" else 0.0)
 
-    _choice(d, "control_mode", key, "dynamic", ("dynamic",),
-            later=("kinematic", "kinematic_heave", "constrained", "blend"))
+    control = _control(d, key)
 
     ik = f"{key}.initial_pose"
     idd = _mapping(d.get("initial_pose"), ik)
@@ -490,6 +490,11 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     )
     if ratio is not None or "quadratic" not in dd:
         params = _default_damping(params, dd, ratio, f"{key}.damping")
+    try:
+        offset = equilibrium_height(params)
+    except ValueError as exc:
+        raise ScenarioError(f"{key}.mass", params.mass, str(exc)) from exc
+    params = replace(params, control=replace(control, height_offset=offset))
     initial = initial_state(
         params,
         _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
@@ -535,6 +540,27 @@ def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.nda
                               0.0, 0.0,
                               params.water_density * cy * draft * hull.length**4 / 64.0])
     return replace(params, damping_linear=linear, damping_quadratic=quadratic)
+
+
+def _control(d: Mapping[str, Any], key: str) -> ControlSettings:
+    mode = _choice(d, "control_mode", key, "dynamic", CONTROL_MODES)
+    ck = f"{key}.control"
+    cd = _mapping(d.get("control"), ck)
+    _only(cd, ck, ("smoothing", "attitude", "pd_frequency", "pd_damping", "blend",
+                   "depth_band", "max_angular_velocity", "rescue_depth", "transition"))
+    return ControlSettings(
+        mode=mode,
+        smoothing=_number(cd, "smoothing", ck, 0.3, 0.0, 60.0, low_open=True, unit="s"),
+        attitude=_choice(cd, "attitude", ck, "smooth", ("smooth", "pd")),
+        pd_frequency=_number(cd, "pd_frequency", ck, 1.0, 0.0, 50.0, low_open=True, unit="Hz"),
+        pd_damping=_number(cd, "pd_damping", ck, 1.0, 0.0, 10.0, low_open=True),
+        blend=_number(cd, "blend", ck, 0.7, 0.0, 1.0),
+        depth_band=_number(cd, "depth_band", ck, 1.0, 0.0, 100.0, low_open=True, unit="m"),
+        max_angular_velocity=_number(cd, "max_angular_velocity", ck, 3.0, 0.0, 100.0,
+                                     low_open=True, unit="rad/s"),
+        rescue_depth=_number(cd, "rescue_depth", ck, 3.0, 0.0, 1000.0, low_open=True, unit="m"),
+        transition=_number(cd, "transition", ck, 1.0, 0.0, 60.0, unit="s"),
+    )
 
 
 def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
