@@ -7,7 +7,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -78,7 +78,7 @@ class BoatParams:
     min_wavelength: float = 0.0
     keel_rate: float = 0.0
     stokes_drift: bool = False
-    control: ControlSettings = ControlSettings()
+    control: ControlSettings = field(default_factory=ControlSettings)
 
 
 @dataclass(frozen=True)
