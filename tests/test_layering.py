@@ -6,7 +6,7 @@ import sys
 CORE = [
     "ocean_sim.constants", "ocean_sim.spectra", "ocean_sim.waves",
     "boat_dynamics.boat", "boat_dynamics.buoyancy", "boat_dynamics.commands",
-    "boat_dynamics.control",
+    "boat_dynamics.control", "boat_dynamics.diagnostics",
     "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.keel",
     "boat_dynamics.mesh_buoyancy",
     "boat_dynamics.propulsion",

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from boat_msgs.msg import WaveField as WaveFieldMsg
+from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
@@ -22,9 +23,11 @@ from std_msgs.msg import Float64
 from boat_dynamics.boat import BoatInputs, BoatState, Forces, evaluate_forces, reference_pose, step
 from boat_dynamics.commands import check_command
 from boat_dynamics.control import CONTROL_MODES
+from boat_dynamics.diagnostics import boat_report
 from boat_dynamics.scenario import BoatSpec, Scenario
 from boat_msgs_py import names
 from boat_msgs_py.convert import (
+    diagnostic_array,
     odometry,
     pose_stamped,
     seconds_to_time,
@@ -117,6 +120,8 @@ class DynamicsNode(Node):
         self._tap = tap
         self._clock_pub = (TappedPublisher(self, Clock, names.CLOCK, CLOCK_QOS, tap)
                            if publish_clock else None)
+        self._diag_pub = TappedPublisher(self, DiagnosticArray, names.DIAGNOSTICS,
+                                         DIAGNOSTICS_QOS, tap)
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
         self.boats = [self._make_boat(spec) for spec in scenario.boats]
@@ -268,6 +273,13 @@ class DynamicsNode(Node):
                 self._publish_state(boat, stamp)
             if diag_due:
                 self._publish_wrenches(boat, stamp)
+        if diag_due:
+            statuses = []
+            for boat in self.boats:
+                r = boat_report(boat.spec.params, boat.state, self.sea, self._substeps)
+                statuses.append((f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message,
+                                 r.values))
+            self._diag_pub.publish(diagnostic_array(stamp, statuses))
 
     def _publish_state(self, boat: _Boat, stamp) -> None:
         params, state = boat.spec.params, boat.state

@@ -6,6 +6,7 @@ import numpy as np
 from boat_msgs.msg import WaveComponent as WaveComponentMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
 from builtin_interfaces.msg import Time
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import (
     Point,
     PoseStamped,
@@ -21,6 +22,7 @@ from boat_msgs_py.names import WORLD_FRAME
 from ocean_sim.waves import WaveComponent, WaveField
 
 __all__ = [
+    "diagnostic_array",
     "odometry",
     "pose_stamped",
     "seconds_to_time",
@@ -126,3 +128,13 @@ def wave_field_from_msg(msg: WaveFieldMsg) -> WaveField:
         gravity=msg.gravity,
         depth=msg.depth,
     )
+
+
+def diagnostic_array(stamp: Time, statuses: list[tuple[str, int, str, tuple]]) -> DiagnosticArray:
+    """diagnostic_msgs/DiagnosticArray of (name, level, message, ((key, value), ...)) entries."""
+    return DiagnosticArray(
+        header=_header(stamp, ""),
+        status=[DiagnosticStatus(level=bytes([level]), name=name, message=message,
+                                 hardware_id=name,
+                                 values=[KeyValue(key=k, value=v) for k, v in values])
+                for name, level, message, values in statuses])

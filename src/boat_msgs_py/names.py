@@ -9,6 +9,7 @@ __all__ = [
     "CLOCK",
     "CMD_RUDDER",
     "CMD_THRUST",
+    "DIAGNOSTICS",
     "ODOM",
     "POSE",
     "SAMPLE_SURFACE",
@@ -35,6 +36,8 @@ SAMPLE_SURFACE = "/ocean/sample_surface"
 #: sensor_msgs/PointCloud2 of the surface around the boats, for viewers (RViz, Foxglove).
 SURFACE_CLOUD = "/ocean/surface"
 CLOCK = "/clock"
+#: diagnostic_msgs/DiagnosticArray, one status per boat.
+DIAGNOSTICS = "/diagnostics"
 
 WORLD_FRAME = "world"
 

@@ -158,6 +158,8 @@ def test_fast_run_with_duration_records_every_message(boatsim, tmp_path):
     for source in names.WRENCH_SOURCES:
         assert counts[f"/wrench/{source}"] == 201
     assert counts["/clock"] == 2001
+    assert counts["/diagnostics"] == 201
+    assert counts["/ocean/surface"] == 21  # 1 Hz of simulation time, t = 0..20 s
     assert counts["/ocean/wave_field"] == 1
     stamp, odom = last
     assert stamp == 20_000_000_000 == odom.header.stamp.sec * 10**9 + odom.header.stamp.nanosec

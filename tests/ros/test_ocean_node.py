@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 from boat_msgs.msg import WaveField
 from boat_msgs.srv import SampleSurface
 from rcl_interfaces.msg import Parameter as ParameterMsg
@@ -132,3 +133,34 @@ def test_boatsim_query_without_an_ocean_exits_1():
                           "--timeout", "1"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 1
     assert "did not answer within 1 s" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_diagnostics_and_control_mode_switch_at_run_time(boatsim, probe):
+    from diagnostic_msgs.msg import DiagnosticArray
+    from rcl_interfaces.msg import ParameterType, ParameterValue
+
+    sim = boatsim("run", "--fast")
+    arrays = []
+    probe.node.create_subscription(DiagnosticArray, "/diagnostics", arrays.append, 10)
+    probe.spin_until(lambda: arrays, 30.0, "/diagnostics")
+    status = arrays[-1].status[0]
+    values = {kv.key: kv.value for kv in status.values}
+    assert status.name == "boatsim: boat" and values["control_mode"] == "dynamic"
+    assert float(values["submerged_volume_m3"]) == pytest.approx(4.0, rel=0.3)
+
+    set_params = probe.node.create_client(SetParameters, "/boat_dynamics/set_parameters")
+
+    def mode(value):
+        p = ParameterMsg(name="control_mode", value=ParameterValue(
+            type=ParameterType.PARAMETER_STRING, string_value=value))
+        return probe.call(set_params, SetParameters.Request(parameters=[p])).results[0]
+
+    bad = mode("hovercraft")
+    assert not bad.successful and "control_mode = 'hovercraft' is not allowed" in bad.reason
+    assert mode("kinematic").successful
+    n = len(arrays)
+    probe.spin_until(lambda: len(arrays) > n + 2, 10.0, "more /diagnostics")
+    values = {kv.key: kv.value for kv in arrays[-1].status[0].values}
+    assert values["control_mode"] == "kinematic"
+    assert sim.stop() == 0
+    assert "control_mode: now kinematic" in sim.output()

@@ -1,0 +1,33 @@
+import pytest
+
+from boat_dynamics.boat import initial_state
+from boat_dynamics.diagnostics import boat_report
+from boat_dynamics.scenario import parse_scenario
+from ocean_sim.waves import WaveField
+
+
+def test_report_of_a_floating_box_is_its_hydrostatics():
+    sc = parse_scenario({"boats": [{"mass": 3280.0, "center_of_mass": [0, 0, -0.1]}]})
+    params = sc.boats[0].params
+    d = 3280.0 / (1025 * 8.0)  # draft 0.4 m
+    state = initial_state(params, [0.0, 0.0, 0.5 - d])
+    r = boat_report(params, state, WaveField(), substeps=2)
+    values = dict(r.values)
+    assert r.level == 0 and r.message == "floating, 40 % submerged"
+    assert float(values["draft_m"]) == pytest.approx(d, abs=1e-4)
+    assert float(values["submerged_volume_m3"]) == pytest.approx(8.0 * d, abs=1e-4)
+    assert float(values["waterplane_area_m2"]) == pytest.approx(8.0, abs=1e-4)
+    gm = d / 2 + 4.0 / (12 * d) - 0.4
+    assert float(values["metacentric_height_m"]) == pytest.approx(gm, abs=1e-4)
+    assert values["control_mode"] == "dynamic" and values["buoyancy_model"] == "mesh"
+    assert "2 substeps" in values["remedies"] and "quadratic heave drag" in values["remedies"]
+
+
+def test_report_warns_when_submerged_or_airborne():
+    sc = parse_scenario({"boats": [{"buoyancy": {"model": "sample_points"}}]})
+    params = sc.boats[0].params
+    deep = boat_report(params, initial_state(params, [0, 0, -3.0]), WaveField())
+    assert deep.level == 1 and deep.message == "fully submerged"
+    assert "depth clamp at 1 m" in dict(deep.values)["remedies"]
+    high = boat_report(params, initial_state(params, [0, 0, 3.0]), WaveField())
+    assert high.level == 1 and high.message == "out of the water"
