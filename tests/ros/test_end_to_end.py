@@ -240,3 +240,24 @@ def test_thrust_stops_after_cmd_timeout_without_commands(boatsim, probe, tmp_pat
     assert speeds[-1][1] < 0.5 * peak  # then drag slows it down
     assert sim.stop() == 0
     assert "/cmd_thrust: no command for 1 s; thrust set to 0" in sim.output()
+
+
+def test_several_boats_each_in_its_namespace(boatsim, probe):
+    sim = boatsim("run", "scenarios/multi_boat.yaml", "--fast")
+    odoms = {name: [] for name in ("alpha", "bravo", "charlie")}
+    for name, box in odoms.items():
+        probe.node.create_subscription(Odometry, f"/{name}/odom", box.append, 10)
+    thrust = probe.node.create_publisher(Float64, "/alpha/cmd_thrust", 10)
+    probe.spin_until(lambda: all(len(b) > 5 for b in odoms.values()), 30.0, "three /odom")
+    assert [odoms[n][-1].child_frame_id for n in odoms] == [
+        "alpha/base_link", "bravo/base_link", "charlie/base_link"]
+    start = {n: _xy(b[-1]) for n, b in odoms.items()}
+    for _ in range(30):
+        thrust.publish(Float64(data=1.0))
+        probe.spin_for(0.1)
+    moved = {n: float(np.linalg.norm(_xy(b[-1]) - start[n])) for n, b in odoms.items()}
+    assert moved["alpha"] > 3.0  # driven by its topic
+    assert moved["bravo"] < 2.0  # no commands: drifts only
+    assert moved["charlie"] > 3.0  # scripted
+    assert sim.stop() == 0
+    assert "boat charlie: scripted commands; ignoring command topics" in sim.output()
