@@ -200,8 +200,14 @@ def evaluate_forces(
         buoy = mesh_buoyancy(model, pts_world, depths, rot, state.position,
                              params.water_density, params.gravity)
     else:
+        point_velocities = None
+        if model.point_damping > 0.0:
+            arms = model.points - com
+            v_points = state.velocity + np.cross(state.angular_velocity, arms)
+            point_velocities = v_points @ rot.T - surface.velocities[:-1]
         buoy = sample_point_buoyancy(model, depths, rot, com, params.water_density,
-                                     params.gravity)
+                                     params.gravity, normals=surface.normals[:-1],
+                                     point_velocities=point_velocities, mass=params.mass)
     damp = damping(
         params.damping_linear, params.damping_quadratic, relative_velocity, state.angular_velocity
     )

@@ -1,21 +1,29 @@
-"""Sample-point buoyancy, derived from density (no tuned spring).
+"""Sample-point buoyancy, derived from density (no tuned spring), with the seed notes' options.
 
 Each of N points stands at the bottom of a vertical column of the hull and carries an equal
 share V / N of the hull's volume V = mass / density. Submerged by ``d`` (surface height above
 the point), it carries the weight of the water its column displaces::
 
-    F_i = rho g (V / N) clamp(d_i / max_depth, 0, 1)   (world +z)
+    F_i = rho g (V / N) s(d_i)      s = clamp(d / max_depth, 0, 1)            (linear)
+                                    s = (1 - exp(-alpha d / max_depth)) / (1 - exp(-alpha))
+                                        for d in [0, max_depth]              (exponential)
 
-applied at the centre of the submerged part of the column (``d / 2`` above the point), so a box
-with a grid of points has its true centre of buoyancy and metacentric height. Equilibrium:
-sum F_i = m g  gives  draft / height = m / (rho V) = density / rho, whatever the mass.
+straight up (default) or along the surface normal, applied at the centre of the submerged
+part of the column (``min(d, max_depth) / 2`` above the point), so a box with a grid of points
+has its true centre of buoyancy. Linear curve: sum F_i = m g gives draft / height = m / (rho V)
+= density / rho, whatever the mass. Options (all from the notes, each labelled as such):
+``depth_scale`` multiplies by clamp(d, 0, 1 m) (less jitter at the waterline), ``point_damping``
+adds -c (m / N) v_i at each submerged point (damping proportional to mass keeps the damping
+ratio when the load changes), ``force_clamp`` caps each point at that fraction of rho g V / N.
 
 Source: the seed notes (../shared/seed/boat-on-gerstner-waves.txt, "Sample-Point / Voxel
-Buoyancy", "derive everything from density", "clamp submersion depth"); Archimedes.
+Buoyancy", "derive everything from density", "Solutions to shooting out" 1, 2 and 6, the
+Vertex Fragment damping); Archimedes.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,12 +41,23 @@ class SamplePointBuoyancy:
         points: (N, 3) m, column bottoms in the body frame (relative to the hull reference point).
         volume: V, m^3, volume displaced when every column is fully submerged (mass / density).
         max_depth: m, submersion at which a column is full (the hull height for a box).
-
+        curve: ``linear`` (Archimedes) or ``exponential`` (saturating, arcade).
+        alpha: steepness of the exponential curve, > 0.
+        direction: ``up`` (Archimedes) or ``normal`` (along the local surface normal).
+        depth_scale: multiply each force by clamp(depth, 0, 1 m).
+        point_damping: c, 1/s; each submerged point adds -c (m / N) v_point.
+        force_clamp: cap of each point's force as a fraction of rho g V / N; None = no cap.
     """
 
     points: np.ndarray
     volume: float
     max_depth: float
+    curve: str = "linear"
+    alpha: float = 3.0
+    direction: str = "up"
+    depth_scale: bool = False
+    point_damping: float = 0.0
+    force_clamp: float | None = None
 
 
 def sample_point_buoyancy(
@@ -48,6 +67,9 @@ def sample_point_buoyancy(
     center_of_mass: np.ndarray,
     water_density: float,
     gravity: float,
+    normals: np.ndarray | None = None,
+    point_velocities: np.ndarray | None = None,
+    mass: float = 0.0,
 ) -> Wrench:
     """Buoyancy wrench of the sample points.
 
@@ -58,15 +80,34 @@ def sample_point_buoyancy(
         center_of_mass: (3,) m, body frame, relative to the hull reference point.
         water_density: rho, kg/m^3.
         gravity: g, m/s^2.
+        normals: (N, 3) world surface normals at the points (``direction: normal``).
+        point_velocities: (N, 3) m/s, world velocity of each point relative to the water
+            (``point_damping``).
+        mass: kg, the boat's mass (``point_damping``).
 
     Returns:
         The buoyancy wrench about the centre of mass, body frame.
-
     """
     n = model.points.shape[0]
+    share = water_density * gravity * (model.volume / n)
     submerged = np.clip(depths, 0.0, model.max_depth)
-    magnitude = water_density * gravity * (model.volume / n) * (submerged / model.max_depth)
-    forces = magnitude[:, None] * rotation[2, :]  # world +z expressed in the body frame
+    if model.curve == "exponential":
+        fraction = (1.0 - np.exp(-model.alpha * submerged / model.max_depth)) / (
+            1.0 - math.exp(-model.alpha))
+    else:
+        fraction = submerged / model.max_depth
+    magnitude = share * fraction
+    if model.depth_scale:
+        magnitude = magnitude * np.clip(depths, 0.0, 1.0)
+    if model.force_clamp is not None:
+        magnitude = np.minimum(magnitude, model.force_clamp * share)
+    if model.direction == "normal" and normals is not None:
+        forces_world = magnitude[:, None] * normals
+    else:
+        forces_world = np.outer(magnitude, [0.0, 0.0, 1.0])
+    if model.point_damping > 0.0 and point_velocities is not None:
+        wet = (depths > 0.0)[:, None]
+        forces_world = forces_world - wet * (model.point_damping * mass / n) * point_velocities
     arms = model.points - center_of_mass
     arms[:, 2] += submerged / 2.0
-    return wrench_at(forces, arms)
+    return wrench_at(forces_world @ rotation, arms)

@@ -57,6 +57,18 @@ class BoxHull:
         gx, gy = np.meshgrid(xs, ys, indexing="ij")
         return np.stack([gx.ravel(), gy.ravel(), np.full(nx * ny, -self.height / 2)], axis=1)
 
+    def boat_layout(self) -> np.ndarray:
+        """The seed notes' 7-point boat layout on the hull bottom, (7, 3) m, body frame.
+
+        Bow, port and starboard forward, centre, port and starboard aft, stern: spread wide
+        for roll and far fore and aft for pitch, symmetric about the centre line, with their
+        centroid at the hull centre (no trim).
+        """
+        length, beam = self.length, self.beam
+        xy = [(0.42, 0.0), (0.2, 0.35), (0.2, -0.35), (0.0, 0.0), (-0.2, 0.35),
+              (-0.2, -0.35), (-0.42, 0.0)]
+        return np.array([[x * length, y * beam, -self.height / 2] for x, y in xy])
+
 
 class HullMeshError(ValueError):
     """A hull mesh that cannot be used (not watertight, degenerate, inside out, wrong units)."""

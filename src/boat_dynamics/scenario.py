@@ -401,20 +401,16 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
 
     bk = f"{key}.buoyancy"
     bd = _mapping(d.get("buoyancy"), bk)
-    _only(bd, bk, ("model", "grid"))
+    _only(bd, bk, ("model", "grid", "layout", "points", "max_depth", "curve", "alpha",
+                   "direction", "depth_scale", "point_damping", "force_clamp"))
     buoyancy_model = _choice(bd, "model", bk, "mesh", ("mesh", "sample_points"))
     if buoyancy_model == "mesh":
-        if "grid" in bd:
-            raise ScenarioError(f"{bk}.grid", bd["grid"], "only for model sample_points")
+        for extra in bd:
+            if extra != "model":
+                raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for model sample_points")
         buoyancy = MeshBuoyancy(mesh)
     else:
-        grid = bd.get("grid", [5, 3])
-        if (not isinstance(grid, list) or len(grid) != 2
-                or not all(isinstance(g, int) and not isinstance(g, bool) and 1 <= g <= 100
-                           for g in grid)):
-            raise ScenarioError(f"{bk}.grid", grid, "must be [nx, ny], integers in [1, 100]")
-        buoyancy = SamplePointBuoyancy(points=hull.bottom_grid(*grid), volume=volume,
-                                       max_depth=hull.height)
+        buoyancy = _sample_points(bd, bk, hull, volume)
 
     dk = f"{key}.damping"
     dd = _mapping(d.get("damping"), dk)
@@ -540,6 +536,47 @@ def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.nda
                               0.0, 0.0,
                               params.water_density * cy * draft * hull.length**4 / 64.0])
     return replace(params, damping_linear=linear, damping_quadratic=quadratic)
+
+
+def _sample_points(bd: Mapping[str, Any], bk: str, hull: BoxHull,
+                   volume: float) -> SamplePointBuoyancy:
+    layout = _choice(bd, "layout", bk, "grid", ("grid", "boat", "custom"))
+    if layout != "grid" and "grid" in bd:
+        raise ScenarioError(f"{bk}.grid", bd["grid"], "only for layout grid")
+    if layout == "grid":
+        grid = bd.get("grid", [5, 3])
+        if (not isinstance(grid, list) or len(grid) != 2
+                or not all(isinstance(g, int) and not isinstance(g, bool) and 1 <= g <= 100
+                           for g in grid)):
+            raise ScenarioError(f"{bk}.grid", grid, "must be [nx, ny], integers in [1, 100]")
+        points = hull.bottom_grid(*grid)
+    elif layout == "boat":
+        points = hull.boat_layout()
+    else:
+        raw = bd.get("points")
+        if (not isinstance(raw, list) or not raw or not all(
+                isinstance(p, list) and len(p) == 3
+                and all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                        and math.isfinite(x) for x in p) for p in raw)):
+            raise ScenarioError(f"{bk}.points", raw,
+                                "layout custom needs a list of [x, y, z] body points (m)")
+        points = np.array(raw, dtype=float)
+    if "points" in bd and layout != "custom":
+        raise ScenarioError(f"{bk}.points", bd["points"], "only for layout custom")
+    clamp = bd.get("force_clamp")
+    if clamp is not None:
+        clamp = _number(bd, "force_clamp", bk, 1.0, 0.0, 100.0, low_open=True)
+    return SamplePointBuoyancy(
+        points=points, volume=volume,
+        max_depth=_number(bd, "max_depth", bk, hull.height, 0.0, 1000.0, low_open=True,
+                          unit="m"),
+        curve=_choice(bd, "curve", bk, "linear", ("linear", "exponential")),
+        alpha=_number(bd, "alpha", bk, 3.0, 0.0, 100.0, low_open=True),
+        direction=_choice(bd, "direction", bk, "up", ("up", "normal")),
+        depth_scale=_flag(bd, "depth_scale", bk, False),
+        point_damping=_number(bd, "point_damping", bk, 0.0, 0.0, 1000.0, unit="1/s"),
+        force_clamp=clamp,
+    )
 
 
 def _control(d: Mapping[str, Any], key: str) -> ControlSettings:
