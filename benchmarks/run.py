@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from boat_dynamics.boat import BoatInputs, step
-from boat_dynamics.scenario import default_scenario_path, load_scenario
+from boat_dynamics.scenario import default_scenario_path, load_scenario, parse_scenario
 from ocean_sim.waves import WaveComponent, WaveField, sample_surface
 
 
@@ -61,46 +61,69 @@ def bench_waves() -> None:
 
 
 def bench_boat_step() -> None:
-    """Time one boat step of the default boat on 3 and 16 wave components."""
-    print("== boat step (default boat, sample points 5x3 grid)")
-    sc = load_scenario(default_scenario_path())
-    boat = sc.boats[0]
+    """Microseconds per boat-step with 16 wave components, per buoyancy model."""
+    print("== boat step, 16 wave components (one boat stepped alone)")
+    sea = _sea(16)
     inputs = BoatInputs(1.0, 0.2)
-    n = 2000
-    for comps in (3, 16):
-        sea = sc.sea if comps == 3 else _sea(comps)
+    cases = (
+        ("sample points, 7 (boat layout)", {"buoyancy": {"model": "sample_points",
+                                                          "layout": "boat"}}),
+        ("mesh box, 12 triangles", {}),
+        ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}),
+    )
+    for label, boat in cases:
+        sc = parse_scenario({"boats": [boat]})
+        params, initial = sc.boats[0].params, sc.boats[0].initial
+        n = 400 if "972" in label else 2000
 
-        def run(sea=sea):
-            s = boat.initial
+        def run(params=params, initial=initial, n=n):
+            s = initial
             for _ in range(n):
-                s = step(boat.params, s, inputs, sea, 0.01)
+                s = step(params, s, inputs, sea, 0.01)
 
         sec = _best_of(run, 3)
-        print(f"  {comps:>2} wave components: {sec / n * 1e6:8.1f} us per boat-step")
+        print(f"  {label:<32}: {sec / n * 1e6:8.1f} us per boat-step")
 
 
-def bench_run(seconds: float) -> None:
-    """Real-time factor of the whole in-process simulation with --fast."""
+def _fleet(n: int) -> dict:
+    side = math.ceil(math.sqrt(n))
+    return {"ocean": {"spectrum": {"significant_height": 1.0, "peak_period": 6.0,
+                                   "components": 16}},
+            "boats": [{"name": f"b{i}", "initial_pose": {"position": [12.0 * (i % side),
+                                                                       12.0 * (i // side),
+                                                                       0.0]}}
+                      for i in range(n)]}
+
+
+def bench_run(seconds: float, boats: int) -> None:
+    """Real-time factor of the whole in-process simulation with --fast (mesh boats)."""
     import io
 
     from boat_dynamics.simulation import RunOptions, run
 
-    print(f"== boatsim run --fast --duration {seconds:g} (default scenario, no subscribers)")
-    sc = load_scenario(default_scenario_path())
+    sc = parse_scenario(_fleet(boats)) if boats > 1 else load_scenario(default_scenario_path())
     t0 = time.perf_counter()
     run(sc, RunOptions(fast=True, duration=seconds), status=io.StringIO())
     wall = time.perf_counter() - t0
-    print(f"  {seconds:g} s simulated in {wall:.2f} s wall: real-time factor {seconds / wall:.1f}")
+    print(f"  {boats:>3} boat(s), {seconds:g} s simulated in {wall:6.2f} s wall: "
+          f"real-time factor {seconds / wall:6.2f}")
 
 
 def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--run-seconds", type=float, default=30.0)
+    parser.add_argument("--run-seconds", type=float, default=20.0)
+    parser.add_argument("--only", choices=("waves", "boat", "run"), help="one group only")
     args = parser.parse_args()
-    bench_waves()
-    bench_boat_step()
-    bench_run(args.run_seconds)
+    if args.only in (None, "waves"):
+        bench_waves()
+    if args.only in (None, "boat"):
+        bench_boat_step()
+    if args.only in (None, "run"):
+        print("== boatsim run --fast (100 Hz physics, default publish rates, no subscribers)")
+        for boats, seconds in ((1, args.run_seconds), (10, args.run_seconds / 4),
+                               (100, args.run_seconds / 20)):
+            bench_run(seconds, boats)
 
 
 if __name__ == "__main__":

@@ -27,7 +27,7 @@ from boat_dynamics.mesh_buoyancy import MeshBuoyancy, mesh_buoyancy
 from boat_dynamics.propulsion import Propulsion, lagged_throttle, thrust
 from boat_dynamics.rigid_body import integrate, quat_from_euler, rotation_matrix
 from boat_dynamics.rudder import Rudder, rudder_wrench
-from boat_dynamics.wrench import Wrench
+from boat_dynamics.wrench import Wrench, cross
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.waves import WaveField, sample_surface, stokes_drift
 
@@ -203,7 +203,7 @@ def evaluate_forces(
         point_velocities = None
         if model.point_damping > 0.0:
             arms = model.points - com
-            v_points = state.velocity + np.cross(state.angular_velocity, arms)
+            v_points = state.velocity + cross(state.angular_velocity, arms)
             point_velocities = v_points @ rot.T - surface.velocities[:-1]
         buoy = sample_point_buoyancy(model, depths, rot, com, params.water_density,
                                      params.gravity, normals=surface.normals[:-1],

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from boat_dynamics.hull import HullMesh
-from boat_dynamics.wrench import Wrench
+from boat_dynamics.wrench import Wrench, cross
 
 __all__ = ["Hydrostatics", "MeshBuoyancy", "clip_submerged", "hydrostatics", "mesh_buoyancy"]
 
@@ -93,13 +93,13 @@ def _submerged(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths: n
     corners = vertices_world[faces]
     normals = _face_normals(model.mesh) @ rotation.T
     p, d, n = clip_submerged(corners, vertex_depths[faces], normals)
-    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    area = 0.5 * np.linalg.norm(cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
     return p, d, n, area
 
 
 def _face_normals(mesh: HullMesh) -> np.ndarray:
     c = mesh.corners
-    n = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+    n = cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
     return n / np.linalg.norm(n, axis=1, keepdims=True)
 
 
@@ -136,7 +136,7 @@ def mesh_buoyancy(
                                         + np.einsum("tj,tjk->tk", d, rel))
     forces = -water_density * gravity * integral_d[:, None] * n
     force = forces.sum(axis=0)
-    torque = np.cross(moment, -water_density * gravity * n).sum(axis=0)
+    torque = cross(moment, -water_density * gravity * n).sum(axis=0)
     return Wrench(rotation.T @ force, rotation.T @ torque)
 
 

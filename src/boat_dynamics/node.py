@@ -25,6 +25,7 @@ from boat_dynamics.commands import check_command
 from boat_dynamics.control import CONTROL_MODES
 from boat_dynamics.diagnostics import boat_report
 from boat_dynamics.scenario import BoatSpec, Scenario
+from boat_dynamics.wrench import cross
 from boat_msgs_py import names
 from boat_msgs_py.convert import (
     diagnostic_array,
@@ -285,7 +286,7 @@ class DynamicsNode(Node):
         params, state = boat.spec.params, boat.state
         pos, q = reference_pose(params, state)
         # velocity of the reference point: v_com + w x (r_ref - r_com), body frame
-        v_ref = state.velocity - np.cross(state.angular_velocity, params.center_of_mass)
+        v_ref = state.velocity - cross(state.angular_velocity, params.center_of_mass)
         odom = odometry(stamp, names.child_frame(boat.spec.name), pos, q, v_ref,
                         state.angular_velocity)
         boat.pubs["odom"].publish(odom)

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from boat_dynamics.wrench import cross
+
 __all__ = [
     "integrate",
     "quat_from_euler",
@@ -116,8 +118,8 @@ def integrate(
         New (position, orientation, velocity, angular_velocity).
 
     """
-    v_dot = force / mass - np.cross(angular_velocity, velocity)
-    w_dot = (torque - np.cross(angular_velocity, inertia * angular_velocity)) / inertia
+    v_dot = force / mass - cross(angular_velocity, velocity)
+    w_dot = (torque - cross(angular_velocity, inertia * angular_velocity)) / inertia
     v = velocity + dt * v_dot
     w = angular_velocity + dt * w_dot
     q = quat_multiply(orientation, _quat_exp(w * dt))
