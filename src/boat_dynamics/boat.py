@@ -22,8 +22,9 @@ from boat_dynamics.control import (
 )
 from boat_dynamics.damping import damping
 from boat_dynamics.hull import BoxHull
+from boat_dynamics.hull_drag import hull_drag
 from boat_dynamics.keel import reflect_off_keel
-from boat_dynamics.mesh_buoyancy import MeshBuoyancy, mesh_buoyancy
+from boat_dynamics.mesh_buoyancy import MeshBuoyancy, mesh_buoyancy, submerged_triangles
 from boat_dynamics.propulsion import Propulsion, lagged_throttle, thrust
 from boat_dynamics.rigid_body import integrate, quat_from_euler, rotation_matrix
 from boat_dynamics.rudder import Rudder, rudder_wrench
@@ -127,6 +128,7 @@ class Forces:
 
     buoyancy: Wrench
     damping: Wrench
+    drag: Wrench
     thrust: Wrench
     rudder: Wrench
     gravity: Wrench
@@ -196,9 +198,19 @@ def evaluate_forces(
         water_velocity = water_velocity + _stokes(sea.filtered(params.min_wavelength))
     relative_velocity = state.velocity - rot.T @ water_velocity
 
+    drag = Wrench(np.zeros(3), np.zeros(3))
     if is_mesh:
+        wet = submerged_triangles(model, pts_world, depths, rot)
         buoy = mesh_buoyancy(model, pts_world, depths, rot, state.position,
-                             params.water_density, params.gravity)
+                             params.water_density, params.gravity, wet=wet)
+        if model.drag.viscous or model.drag.pressure:
+            omega_world = rot @ state.angular_velocity
+            centroids = wet.corners.mean(axis=1)
+            flow = (rot @ relative_velocity
+                    + cross(omega_world, centroids - state.position))
+            drag = hull_drag(model.drag, wet.corners, wet.normals, wet.areas, flow,
+                             float(np.linalg.norm(relative_velocity)), params.hull.length,
+                             params.water_density, state.position, rot)
     else:
         point_velocities = None
         if model.point_damping > 0.0:
@@ -216,8 +228,8 @@ def evaluate_forces(
         params.rudder, inputs.rudder, float(relative_velocity[0]), params.water_density, com
     )
     weight = Wrench(params.mass * params.gravity * -rot[2, :], np.zeros(3))
-    total = buoy + damp + push + steer + weight
-    return Forces(buoy, damp, push, steer, weight, total)
+    total = buoy + damp + drag + push + steer + weight
+    return Forces(buoy, damp, drag, push, steer, weight, total)
 
 
 def step(

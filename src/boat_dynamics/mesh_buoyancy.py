@@ -19,14 +19,23 @@ variant, "true center of pressure").
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from boat_dynamics.hull import HullMesh
+from boat_dynamics.hull_drag import HullDrag
 from boat_dynamics.wrench import Wrench, cross
 
-__all__ = ["Hydrostatics", "MeshBuoyancy", "clip_submerged", "hydrostatics", "mesh_buoyancy"]
+__all__ = [
+    "Hydrostatics",
+    "MeshBuoyancy",
+    "SubmergedTriangles",
+    "clip_submerged",
+    "hydrostatics",
+    "mesh_buoyancy",
+    "submerged_triangles",
+]
 
 
 @dataclass(frozen=True)
@@ -35,9 +44,11 @@ class MeshBuoyancy:
 
     Attributes:
         mesh: the closed hull mesh (body frame, origin at the hull reference point).
+        drag: friction and pressure drag options on the wetted triangles.
     """
 
     mesh: HullMesh
+    drag: HullDrag = field(default_factory=HullDrag)
 
 
 def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
@@ -87,14 +98,36 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
     return np.concatenate(out_p), np.concatenate(out_d), np.concatenate(out_n)
 
 
-def _submerged(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths: np.ndarray,
-               rotation: np.ndarray):
+@dataclass(frozen=True)
+class SubmergedTriangles:
+    """The wetted part of a hull, world frame.
+
+    Attributes:
+        corners: (T, 3, 3) m.
+        depths: (T, 3) m below the surface at each corner.
+        normals: (T, 3) outward unit normals.
+        areas: (T,) m^2.
+    """
+
+    corners: np.ndarray
+    depths: np.ndarray
+    normals: np.ndarray
+    areas: np.ndarray
+
+    def __iter__(self):
+        return iter((self.corners, self.depths, self.normals, self.areas))
+
+
+def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
+                        vertex_depths: np.ndarray, rotation: np.ndarray) -> SubmergedTriangles:
+    """Clip the hull at the surface sampled at its vertices (see :func:`clip_submerged`)."""
     faces = model.mesh.faces
     corners = vertices_world[faces]
     normals = _face_normals(model.mesh) @ rotation.T
     p, d, n = clip_submerged(corners, vertex_depths[faces], normals)
     area = 0.5 * np.linalg.norm(cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
-    return p, d, n, area
+    return SubmergedTriangles(p, d, n, area)
+
 
 
 def _face_normals(mesh: HullMesh) -> np.ndarray:
@@ -111,6 +144,7 @@ def mesh_buoyancy(
     center_of_mass_world: np.ndarray,
     water_density: float,
     gravity: float,
+    wet: SubmergedTriangles | None = None,
 ) -> Wrench:
     """Hydrostatic pressure wrench on the submerged hull.
 
@@ -122,11 +156,14 @@ def mesh_buoyancy(
         center_of_mass_world: (3,) m.
         water_density: rho, kg/m^3.
         gravity: g, m/s^2.
+        wet: the submerged triangles, if already clipped.
 
     Returns:
         The wrench about the centre of mass, body frame.
     """
-    p, d, n, area = _submerged(model, vertices_world, vertex_depths, rotation)
+    if wet is None:
+        wet = submerged_triangles(model, vertices_world, vertex_depths, rotation)
+    p, d, n, area = wet
     if p.shape[0] == 0:
         return Wrench(np.zeros(3), np.zeros(3))
     dsum = d.sum(axis=1)
@@ -171,7 +208,7 @@ def hydrostatics(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths:
     body x axis. Source: Biran & Lopez-Pulido, "Ship Hydrostatics and Stability" (2014),
     ch. 2-3.
     """
-    p, d, n, area = _submerged(model, vertices_world, vertex_depths, rotation)
+    p, d, n, area = submerged_triangles(model, vertices_world, vertex_depths, rotation)
     if p.shape[0] == 0:
         return Hydrostatics(0.0, center_of_mass_world.copy(), 0.0, 0.0, 0.0)
     nz = n[:, 2]

@@ -21,6 +21,7 @@ from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.commands import CommandScript
 from boat_dynamics.control import CONTROL_MODES, ControlSettings
 from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.hull_drag import HullDrag
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.propulsion import Propulsion
 from boat_dynamics.rudder import RUDDER_MODELS, Rudder
@@ -332,7 +333,8 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
 
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
-              "commands", "min_wavelength", "keel", "stokes_drift", "control")
+              "commands", "min_wavelength", "keel", "stokes_drift", "control",
+              "inertia_scale")
 
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -398,17 +400,18 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
                else _vector(d, "inertia", key, 3, [1.0, 1.0, 1.0], low=0.0))
     if np.any(inertia <= 0.0):
         raise ScenarioError(f"{key}.inertia", inertia_raw, "every moment must be > 0 (kg m^2)")
+    inertia = inertia * _vector(d, "inertia_scale", key, 3, [1.0, 1.0, 1.0], low=0.01)
 
     bk = f"{key}.buoyancy"
     bd = _mapping(d.get("buoyancy"), bk)
     _only(bd, bk, ("model", "grid", "layout", "points", "max_depth", "curve", "alpha",
-                   "direction", "depth_scale", "point_damping", "force_clamp"))
+                   "direction", "depth_scale", "point_damping", "force_clamp", "drag"))
     buoyancy_model = _choice(bd, "model", bk, "mesh", ("mesh", "sample_points"))
     if buoyancy_model == "mesh":
         for extra in bd:
-            if extra != "model":
+            if extra not in ("model", "drag"):
                 raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for model sample_points")
-        buoyancy = MeshBuoyancy(mesh)
+        buoyancy = MeshBuoyancy(mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"))
     else:
         buoyancy = _sample_points(bd, bk, hull, volume)
 
@@ -538,8 +541,32 @@ def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.nda
     return replace(params, damping_linear=linear, damping_quadratic=quadratic)
 
 
+def _hull_drag(raw: Any, key: str) -> HullDrag:
+    d = _mapping(raw, key)
+    fields = ("viscous", "form_factor", "kinematic_viscosity", "pressure", "reference_speed",
+              "pressure_linear", "pressure_quadratic", "suction_linear", "suction_quadratic",
+              "pressure_falloff", "suction_falloff")
+    _only(d, key, fields)
+    base = HullDrag()
+    return HullDrag(
+        viscous=_flag(d, "viscous", key, False),
+        form_factor=_number(d, "form_factor", key, base.form_factor, 0.0, 10.0),
+        kinematic_viscosity=_number(d, "kinematic_viscosity", key, base.kinematic_viscosity,
+                                    0.0, 1e-2, low_open=True, unit="m^2/s"),
+        pressure=_flag(d, "pressure", key, False),
+        reference_speed=_number(d, "reference_speed", key, 1.0, 0.0, 100.0, low_open=True,
+                                unit="m/s"),
+        **{name: _number(d, name, key, getattr(base, name), 0.0, 1e6)
+           for name in ("pressure_linear", "pressure_quadratic", "suction_linear",
+                        "suction_quadratic", "pressure_falloff", "suction_falloff")},
+    )
+
+
 def _sample_points(bd: Mapping[str, Any], bk: str, hull: BoxHull,
                    volume: float) -> SamplePointBuoyancy:
+    if "drag" in bd:
+        raise ScenarioError(f"{bk}.drag", bd["drag"], "only for model mesh (drag acts on the "
+                            "hull triangles)")
     layout = _choice(bd, "layout", bk, "grid", ("grid", "boat", "custom"))
     if layout != "grid" and "grid" in bd:
         raise ScenarioError(f"{bk}.grid", bd["grid"], "only for layout grid")

@@ -29,7 +29,7 @@ ODOM = "odom"
 POSE = "pose"
 TWIST = "twist"
 #: wrench/<source> topics published by the dynamics node (``total`` includes gravity).
-WRENCH_SOURCES = ("buoyancy", "damping", "thrust", "rudder", "total")
+WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "total")
 
 WAVE_FIELD = "/ocean/wave_field"
 SAMPLE_SURFACE = "/ocean/sample_surface"

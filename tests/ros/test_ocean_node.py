@@ -142,11 +142,13 @@ def test_diagnostics_and_control_mode_switch_at_run_time(boatsim, probe):
     sim = boatsim("run", "--fast")
     arrays = []
     probe.node.create_subscription(DiagnosticArray, "/diagnostics", arrays.append, 10)
-    probe.spin_until(lambda: arrays, 30.0, "/diagnostics")
+    probe.spin_until(lambda: len(arrays) >= 20, 30.0, "/diagnostics")
     status = arrays[-1].status[0]
     values = {kv.key: kv.value for kv in status.values}
     assert status.name == "boatsim: boat" and values["control_mode"] == "dynamic"
-    assert float(values["submerged_volume_m3"]) == pytest.approx(4.0, rel=0.3)
+    volumes = [float({kv.key: kv.value for kv in a.status[0].values}["submerged_volume_m3"])
+               for a in arrays]
+    assert np.mean(volumes) == pytest.approx(4.0, rel=0.1)  # half of the 8 m^3 box, on average
 
     set_params = probe.node.create_client(SetParameters, "/boat_dynamics/set_parameters")
 
