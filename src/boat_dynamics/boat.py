@@ -61,7 +61,6 @@ class BoatParams:
         rudder: the rudder.
         water_density: rho, kg/m^3.
         gravity: g, m/s^2.
-
     """
 
     hull: BoxHull
@@ -112,7 +111,6 @@ class BoatInputs:
     Attributes:
         throttle: -1..1, commanded fraction of max thrust (negative = reverse).
         rudder: rad, + turns the bow to port (rudder and/or steerable nozzle).
-
     """
 
     throttle: float = 0.0
@@ -155,7 +153,6 @@ def initial_state(
 
     Returns:
         The state (centre of mass placed from the reference point and attitude).
-
     """
     q = quat_from_euler(roll, pitch, yaw)
     com = np.asarray(position, dtype=float) + rotation_matrix(q) @ params.center_of_mass
@@ -181,7 +178,6 @@ def evaluate_forces(
 
     Returns:
         Each source's wrench and the total, body frame, about the centre of mass.
-
     """
     rot = rotation_matrix(state.orientation)
     com = params.center_of_mass
@@ -246,7 +242,6 @@ def step(
 
     Returns:
         The state at t + dt.
-
     """
     throttle = lagged_throttle(params.propulsion, state.throttle, inputs.throttle, dt)
     state = replace(state, throttle=throttle)

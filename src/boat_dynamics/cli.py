@@ -44,6 +44,16 @@ def _parser() -> argparse.ArgumentParser:
                      help="stop after S seconds of simulated time")
     run.add_argument("--record", metavar="DIR",
                      help="write every topic to a rosbag2 (MCAP) bag in the new directory DIR")
+    run.add_argument("--processes", action="store_true",
+                     help="run the ocean and each boat's dynamics in processes of their own "
+                          "(real time only)")
+    node = verbs.add_parser("_node", help=argparse.SUPPRESS)
+    node.add_argument("role", choices=("ocean", "boat"))
+    node.add_argument("scenario")
+    node.add_argument("--boat", default="")
+    node.add_argument("--epoch", type=float, required=True)
+    node.add_argument("--duration", type=_positive_seconds)
+    node.add_argument("--quiet", action="store_true")
     query = verbs.add_parser(
         "query", help="ask the running ocean for the surface at points",
         description="Print height, normal and water velocity at world points (x, y) from "
@@ -105,6 +115,20 @@ def _run(args: argparse.Namespace) -> int:
     except ScenarioError as exc:
         print(f"boatsim: error: invalid scenario {path}: {exc}", file=sys.stderr)
         return 2
+    if args.verb == "_node":
+        options = RunOptions(duration=args.duration, role=args.role, boat=args.boat,
+                             epoch=args.epoch)
+        return run(scenario, options, status=open(os.devnull, "w") if args.quiet
+                   else sys.stderr)
+    if args.processes:
+        if args.fast or args.record or not scenario.simulation.realtime:
+            print("boatsim: error: --processes runs in real time, without --fast or --record "
+                  "(lockstep and recording across processes are not implemented yet)",
+                  file=sys.stderr)
+            return 2
+        from boat_dynamics.simulation import run_processes
+
+        return run_processes(scenario, str(path), RunOptions(duration=args.duration))
     try:
         return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
                                         record=args.record))
@@ -117,7 +141,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``boatsim``; returns the exit status."""
     args = _parser().parse_args(argv)
     try:
-        if args.verb == "run":
+        if args.verb in ("run", "_node"):
             return _run(args)
         if args.verb == "query":
             return _query(args)

@@ -20,7 +20,6 @@ class CommandCheck:
     Attributes:
         value: the value to use, or None when the command must be ignored (non-finite).
         problem: why the raw value was not used as is, or None when it was fine.
-
     """
 
     value: float | None
@@ -38,7 +37,6 @@ def check_command(raw: float, low: float, high: float, unit: str = "") -> Comman
 
     Returns:
         The value to apply (None to keep the previous one) and the problem, if any.
-
     """
     suffix = f" {unit}" if unit else ""
     if not math.isfinite(raw):
@@ -59,7 +57,6 @@ class CommandScript:
         times: s, strictly increasing start times.
         throttles: -1..1 per entry.
         rudders: rad per entry.
-
     """
 
     times: tuple[float, ...]

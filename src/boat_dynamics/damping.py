@@ -30,7 +30,6 @@ def damping(
 
     Returns:
         The damping wrench, body frame, about the centre of mass.
-
     """
     force = -(linear[:3] + quadratic[:3] * np.abs(velocity)) * velocity
     torque = -(linear[3:] + quadratic[3:] * np.abs(angular_velocity)) * angular_velocity

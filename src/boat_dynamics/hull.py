@@ -21,7 +21,6 @@ class BoxHull:
         length: along x, m, > 0.
         beam: along y, m, > 0.
         height: along z, m, > 0.
-
     """
 
     length: float

@@ -51,7 +51,6 @@ class SimClock:
         rate_hz: physics steps per simulated second.
         epoch: s, message stamp of simulation time 0.
         steps: physics steps taken.
-
     """
 
     rate_hz: float
@@ -95,12 +94,12 @@ class DynamicsNode(Node):
         clock: the shared simulation clock (advanced by this node).
         publish_clock: publish /clock (the simulation owns time: --fast).
         tap: also hand every published message to this (recording), or None.
-
+        name: the node name (``boat_dynamics``; one per boat with ``--processes``).
     """
 
     def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
-                 tap: Tap | None = None) -> None:
-        super().__init__("boat_dynamics")
+                 tap: Tap | None = None, name: str = "boat_dynamics") -> None:
+        super().__init__(name)
         sim = scenario.simulation
         self._sim_clock = clock
         self.declare_parameter("rate_hz", sim.rate_hz, _rate_descriptor(

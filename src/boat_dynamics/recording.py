@@ -55,7 +55,6 @@ class BagWriter:
 
     Args:
         path: directory to create; must not exist.
-
     """
 
     def __init__(self, path: str | Path) -> None:
@@ -102,7 +101,6 @@ class TopicRecorder:
         stamp_ns: bag timestamp of the current time, ns.
         skip: topics not to subscribe to (those already tapped at their publisher).
         qos: subscription QoS.
-
     """
 
     def __init__(self, node: Node, bag: BagWriter, stamp_ns: Callable[[], int],

@@ -116,7 +116,6 @@ def integrate(
 
     Returns:
         New (position, orientation, velocity, angular_velocity).
-
     """
     v_dot = force / mass - cross(angular_velocity, velocity)
     w_dot = (torque - cross(angular_velocity, inertia * angular_velocity)) / inertia

@@ -48,7 +48,6 @@ class ScenarioError(ValueError):
         key: path of the offending key, e.g. ``boats[0].mass``.
         value: the value found.
         allowed: what would have been accepted.
-
     """
 
     def __init__(self, key: str, value: object, allowed: str) -> None:
@@ -72,7 +71,6 @@ class SimulationSettings:
         gravity: m/s^2.
         water_density: kg/m^3.
         cmd_timeout: s without a cmd_thrust message after which thrust is set to zero.
-
     """
 
     rate_hz: float = 100.0
@@ -96,7 +94,6 @@ class BoatSpec:
         params: its physical parameters.
         initial: its initial state.
         commands: scripted commands, or None to follow the command topics.
-
     """
 
     name: str
@@ -125,7 +122,6 @@ def load_scenario(path: str | Path) -> Scenario:
 
     Raises:
         ScenarioError: unreadable file, bad YAML, or an invalid key or value.
-
     """
     p = Path(path)
     try:
@@ -656,7 +652,6 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
 
     Raises:
         ScenarioError: an invalid key or value, named by its path.
-
     """
     d = _mapping(data, "")
     _only(d, "", ("simulation", "ocean", "boats"))

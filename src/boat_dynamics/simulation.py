@@ -12,7 +12,7 @@ import signal
 import sys
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TextIO
 
 import rclpy
@@ -27,7 +27,7 @@ from boat_dynamics.rigid_body import quat_to_euler
 from boat_dynamics.scenario import Scenario
 from ocean_sim.node import OceanNode
 
-__all__ = ["RunOptions", "run"]
+__all__ = ["RunOptions", "run", "run_processes"]
 
 #: How long to wait for the dynamics node to receive the first wave field, s (wall).
 _FIELD_TIMEOUT = 10.0
@@ -47,12 +47,19 @@ class RunOptions:
         fast: run as fast as possible and publish /clock (else paced to real time).
         duration: s of simulated time, None = until stopped.
         record: directory of a rosbag2 (MCAP) bag to write, or None.
-
+        role: ``all`` (ocean and every boat), ``ocean`` or ``boat`` (one process of
+            ``--processes``).
+        boat: the boat of a ``boat`` role.
+        epoch: s (wall clock) of simulation time 0, shared by the processes of a run; None =
+            now (or 0 with ``fast``).
     """
 
     fast: bool = False
     duration: float | None = None
     record: str | None = None
+    role: str = "all"
+    boat: str | None = None
+    epoch: float | None = None
 
 
 def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
@@ -116,12 +123,18 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
 
     Raises:
         RecordError: the bag directory cannot be created.
-
     """
     sim = scenario.simulation
     fast = options.fast or not sim.realtime
     duration = options.duration if options.duration is not None else sim.duration
-    clock = SimClock(rate_hz=sim.rate_hz, epoch=0.0 if fast else time.time())
+    epoch = options.epoch if options.epoch is not None else (0.0 if fast else time.time())
+    clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
+    if options.epoch is not None and not fast:  # joining a run that started at the epoch
+        clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
+    if options.role == "boat":
+        scenario = replace(scenario, boats=tuple(
+            replace(b, initial=replace(b.initial, t=clock.t))
+            for b in scenario.boats if b.name == options.boat))
     bag = BagWriter(options.record) if options.record else None
     tap = bag.tap(clock.stamp_ns) if bag is not None else None
 
@@ -133,50 +146,65 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     nodes = []
     display = _Status(status, len(scenario.boats))
     try:
-        dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap)
-        ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
-                          surface_centers=dynamics.boat_positions)
-        nodes = [ocean, dynamics]
+        dynamics = ocean = None
+        if options.role in ("all", "boat"):
+            name = "boat_dynamics" if options.role == "all" else f"boat_dynamics_{options.boat}"
+            dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name)
+            nodes.append(dynamics)
+        if options.role in ("all", "ocean"):
+            ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
+                              surface_centers=dynamics.boat_positions if dynamics else None)
+            nodes.append(ocean)
+        logger = nodes[0].get_logger()
         recorder = None
         if bag is not None:
             # The sim's own topics are tapped at their publishers; the recorder takes the rest.
             recorder = TopicRecorder(
-                dynamics, bag, clock.stamp_ns, skip=tap.topics,
+                nodes[0], bag, clock.stamp_ns, skip=tap.topics,
                 qos=QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE))
             recorder.discover()
         for n in nodes:
             executor.add_node(n)
         deadline = time.monotonic() + _FIELD_TIMEOUT
-        while dynamics.sea is None and not stop.is_set():
+        while dynamics is not None and dynamics.sea is None and not stop.is_set():
             if time.monotonic() > deadline:
-                dynamics.get_logger().error("no wave field received from the ocean node")
+                logger.error("no wave field received from the ocean node")
                 return 1
             executor.spin_once(timeout_sec=0.05)
         if stop.is_set():
             return 0
-        dynamics.publish_outputs()
-        ocean.advance(clock.t)
-        dynamics.get_logger().info(
-            f"running {scenario.source}: {len(scenario.boats)} boat(s) at {sim.rate_hz:g} Hz, "
+        if dynamics is not None:
+            dynamics.publish_outputs()
+        if ocean is not None:
+            ocean.advance(clock.t)
+        logger.info(
+            f"running {scenario.source}: {len(scenario.boats) if dynamics else 0} boat(s) at "
+            f"{sim.rate_hz:g} Hz, "
             f"{'as fast as possible (/clock published)' if fast else 'real time'}"
             + (f", for {duration:g} s" if duration else "")
             + (f", recording to {bag.path}" if bag else ""))
-        wall0 = time.monotonic()
-        next_discovery = wall0 + _DISCOVERY_PERIOD
+        wall0 = time.time() - clock.t if options.epoch is None else epoch
+        next_discovery = time.monotonic() + _DISCOVERY_PERIOD
         while (duration is None or clock.t < duration - 0.5 / sim.rate_hz) and not stop.is_set():
-            dynamics.advance()
-            ocean.advance(clock.t)
+            if dynamics is not None:
+                dynamics.advance()
+            else:
+                clock.steps += 1
+            if ocean is not None:
+                ocean.advance(clock.t)
             if fast:
                 _spin_pending(executor)
             else:
                 step_due = wall0 + clock.t
-                while (remaining := step_due - time.monotonic()) > 0 and not stop.is_set():
+                while (remaining := step_due - time.time()) > 0 and not stop.is_set():
                     executor.spin_once(timeout_sec=remaining)
             if recorder is not None and time.monotonic() > next_discovery:
                 next_discovery = time.monotonic() + _DISCOVERY_PERIOD
                 recorder.discover()
-            display.update(dynamics, clock.t)
-        display.update(dynamics, clock.t, force=True)
+            if dynamics is not None:
+                display.update(dynamics, clock.t)
+        if dynamics is not None:
+            display.update(dynamics, clock.t, force=True)
         return 0
     except (KeyboardInterrupt, ExternalShutdownException):
         return 0
@@ -192,5 +220,52 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
             n.destroy_node()
         executor.shutdown(timeout_sec=0.1)
         rclpy.try_shutdown()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+def run_processes(scenario: Scenario, path: str, options: RunOptions,
+                  status: TextIO = sys.stderr) -> int:
+    """`boatsim run --processes`: the ocean and each boat's dynamics in a process of its own.
+
+    The processes share an epoch (the wall-clock time of simulation time 0, a second ahead so
+    that they all start on it) and pace themselves to real time; the parent forwards SIGINT
+    and SIGTERM and returns 0 when every child exited 0. Only the first boat's process shows
+    the status line.
+    """
+    import subprocess
+
+    epoch = time.time() + 1.0
+    common = [path, "--epoch", repr(epoch)]
+    if options.duration is not None:
+        common += ["--duration", repr(options.duration)]
+    commands = [["ocean", *common, "--quiet"]]
+    for i, boat in enumerate(scenario.boats):
+        commands.append(["boat", *common, "--boat", boat.name, *(["--quiet"] if i else [])])
+    children = [subprocess.Popen([sys.executable, "-m", "boat_dynamics", "_node", *c])
+                for c in commands]
+    print(f"boatsim: started {len(children)} processes (ocean + {len(scenario.boats)} boats): "
+          f"pids {' '.join(str(c.pid) for c in children)}", file=status)
+
+    def forward(signum, _frame):
+        for c in children:
+            if c.poll() is None:
+                c.send_signal(signal.SIGINT)
+
+    previous = {sig: signal.signal(sig, forward) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        codes = []
+        for c in children:
+            while True:
+                try:
+                    codes.append(c.wait())
+                    break
+                except KeyboardInterrupt:
+                    forward(signal.SIGINT, None)
+        return 0 if all(code == 0 for code in codes) else 1
+    finally:
+        for c in children:
+            if c.poll() is None:
+                c.kill()
         for sig, handler in previous.items():
             signal.signal(sig, handler)

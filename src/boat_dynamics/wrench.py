@@ -31,7 +31,6 @@ class Wrench:
     Attributes:
         force: (3,) N.
         torque: (3,) N m.
-
     """
 
     force: np.ndarray
@@ -53,7 +52,6 @@ def wrench_at(forces: np.ndarray, points: np.ndarray) -> Wrench:
 
     Returns:
         The wrench: sum of forces, and sum of r x F.
-
     """
     f = np.atleast_2d(forces)
     r = np.atleast_2d(points)

@@ -74,7 +74,6 @@ def odometry(stamp: Time, child: str, position: np.ndarray, orientation: np.ndar
         orientation: (4,) (x, y, z, w).
         velocity: (3,) m/s, body frame, of the reference point.
         angular_velocity: (3,) rad/s, body frame.
-
     """
     msg = Odometry(header=_header(stamp, WORLD_FRAME), child_frame_id=child)
     msg.pose.pose.position = Point(x=float(position[0]), y=float(position[1]),

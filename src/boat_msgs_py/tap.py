@@ -26,7 +26,6 @@ class Tap:
 
     Args:
         sink: called with (topic, type string, serialized CDR bytes) for every message.
-
     """
 
     def __init__(self, sink: Callable[[str, str, bytes], None]) -> None:
@@ -43,7 +42,6 @@ class TappedPublisher:
         topic: absolute topic name.
         qos: QoS profile.
         tap: where to send messages, or None for a plain publisher.
-
     """
 
     def __init__(self, node: Node, msg_class: type, topic: str, qos: QoSProfile,

@@ -65,7 +65,6 @@ class InvalidSeaStateError(ValueError):
         key: which value, e.g. ``"components[2].wavelength"``.
         value: the offending value.
         allowed: what would have been accepted.
-
     """
 
     def __init__(self, key: str, value: object, allowed: str) -> None:
@@ -85,7 +84,6 @@ class WaveComponent:
         direction: heading the wave travels toward, rad, counter-clockwise from +x (east).
         steepness: Q, dimensionless, 0 (sine wave) .. 1 (trochoid, sharp crests).
         phase: phi, rad.
-
     """
 
     amplitude: float
@@ -113,7 +111,6 @@ def angular_frequency(wavenumber: np.ndarray | float, gravity: float, depth: flo
 
     Source: Tessendorf (2001), eq. 14; Dean & Dalrymple, "Water Wave Mechanics for Engineers
     and Scientists" (1991), eq. 4.19.
-
     """
     k = np.asarray(wavenumber, dtype=float)
     if math.isinf(depth):
@@ -148,7 +145,6 @@ class WaveField:
         components: the wave components.
         gravity: g, m/s^2, > 0.
         depth: h, m, > 0; ``inf`` = deep water.
-
     """
 
     components: tuple[WaveComponent, ...] = ()

@@ -261,3 +261,43 @@ def test_several_boats_each_in_its_namespace(boatsim, probe):
     assert moved["charlie"] > 3.0  # scripted
     assert sim.stop() == 0
     assert "boat charlie: scripted commands; ignoring command topics" in sim.output()
+
+
+def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
+    sim = boatsim("run", "scenarios/multi_boat.yaml", "--processes", "--duration", "8")
+    odoms = {name: [] for name in ("alpha", "bravo", "charlie")}
+    for name, box in odoms.items():
+        probe.node.create_subscription(Odometry, f"/{name}/odom", box.append, 10)
+    probe.spin_until(lambda: all(len(b) > 20 for b in odoms.values()), 30.0, "three /odom")
+    nodes = {n for n, _ in probe.node.get_node_names_and_namespaces()}
+    assert {"ocean", "boat_dynamics_alpha", "boat_dynamics_bravo",
+            "boat_dynamics_charlie"} <= nodes
+    # one clock: the processes' stamps agree within a few steps
+    stamps = [time_to_seconds(b[-1].header.stamp) for b in odoms.values()]
+    assert max(stamps) - min(stamps) < 0.2
+    assert sim.wait(timeout=60) == 0
+    out = sim.output()
+    assert "started 4 processes" in out and "Traceback" not in out
+
+
+def test_processes_refuses_fast_and_record(boatsim, tmp_path):
+    sim = boatsim("run", "--processes", "--fast")
+    assert sim.wait(timeout=30) == 2
+    assert "--processes runs in real time" in sim.output()
+
+
+def test_processes_ctrl_c_stops_every_child(boatsim, probe):
+    import os
+    import re
+
+    sim = boatsim("run", "--processes")
+    odoms = []
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    probe.spin_until(lambda: len(odoms) > 10, 30.0, "/odom")
+    pids = [int(p) for p in re.search(r"pids ([\d ]+)", sim.output()).group(1).split()]
+    assert len(pids) == 2
+    assert sim.stop(signal.SIGINT) == 0
+    for pid in pids:
+        with pytest.raises(ProcessLookupError):
+            os.kill(pid, 0)
+    assert "Traceback" not in sim.output()
