@@ -7,6 +7,7 @@ centre of the hull's bounding box (DESIGN.md, "Conventions").
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -84,6 +85,13 @@ class HullMesh:
 
     vertices: np.ndarray
     faces: np.ndarray
+
+    @cached_property
+    def face_normals(self) -> np.ndarray:
+        """(F, 3) outward unit normals, body frame (computed once)."""
+        c = self.corners
+        n = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+        return n / np.linalg.norm(n, axis=1, keepdims=True)
 
     @property
     def corners(self) -> np.ndarray:

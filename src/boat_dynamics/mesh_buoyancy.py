@@ -123,17 +123,11 @@ def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
     """Clip the hull at the surface sampled at its vertices (see :func:`clip_submerged`)."""
     faces = model.mesh.faces
     corners = vertices_world[faces]
-    normals = _face_normals(model.mesh) @ rotation.T
+    normals = model.mesh.face_normals @ rotation.T
     p, d, n = clip_submerged(corners, vertex_depths[faces], normals)
     area = 0.5 * np.linalg.norm(cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
     return SubmergedTriangles(p, d, n, area)
 
-
-
-def _face_normals(mesh: HullMesh) -> np.ndarray:
-    c = mesh.corners
-    n = cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
-    return n / np.linalg.norm(n, axis=1, keepdims=True)
 
 
 def mesh_buoyancy(

@@ -20,7 +20,14 @@ from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 
-from boat_dynamics.boat import BoatInputs, BoatState, Forces, evaluate_forces, reference_pose, step
+from boat_dynamics.boat import (
+    BoatInputs,
+    BoatState,
+    Forces,
+    evaluate_forces,
+    reference_pose,
+    step_many,
+)
 from boat_dynamics.commands import check_command
 from boat_dynamics.control import CONTROL_MODES
 from boat_dynamics.diagnostics import boat_report
@@ -75,6 +82,7 @@ class _Boat:
     rudder: float = 0.0
     last_thrust_t: float = -math.inf
     timed_out: bool = True
+    forces: Forces | None = None  # acting during the last step
     pubs: dict[str, TappedPublisher] = field(default_factory=dict)
     subs: list = field(default_factory=list)
 
@@ -253,10 +261,13 @@ class DynamicsNode(Node):
         """Take one physics step for every boat, then publish what is due."""
         if self.sea is None:
             raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
-        for boat in self.boats:
-            inputs = self._inputs(boat)
-            for _ in range(self._substeps):
-                boat.state = step(boat.spec.params, boat.state, inputs, self.sea, self._dt)
+        params = [b.spec.params for b in self.boats]
+        inputs = [self._inputs(b) for b in self.boats]
+        for _ in range(self._substeps):
+            results = step_many(params, [b.state for b in self.boats], inputs, self.sea,
+                                self._dt)
+            for boat, (state, forces) in zip(self.boats, results, strict=True):
+                boat.state, boat.forces = state, forces
         self._sim_clock.steps += 1
         self.publish_outputs()
 
@@ -293,8 +304,8 @@ class DynamicsNode(Node):
         boat.pubs["twist"].publish(twist_stamped(odom))
 
     def _publish_wrenches(self, boat: _Boat, stamp) -> None:
-        forces: Forces = evaluate_forces(boat.spec.params, boat.state, self._inputs(boat),
-                                         self.sea)
+        forces: Forces = boat.forces or evaluate_forces(boat.spec.params, boat.state,
+                                                        self._inputs(boat), self.sea)
         frame = names.child_frame(boat.spec.name)
         for source in names.WRENCH_SOURCES:
             w = getattr(forces, source)

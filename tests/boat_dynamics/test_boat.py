@@ -137,3 +137,26 @@ def test_boat_in_waves_stays_afloat_and_finite(boat_factory):
     assert np.all(np.isfinite(zs))
     assert max(abs(z) for z in zs) < 1.5  # follows a sea of +-0.9 m, never flies or sinks
     assert abs(roll) < math.radians(30) and abs(pitch) < math.radians(30)
+
+
+def test_step_many_equals_stepping_each_boat_alone(boat_factory):
+    from boat_dynamics.boat import step_many
+    from boat_dynamics.control import ControlSettings
+
+    sea = WaveField((WaveComponent(0.4, 20.0, 0.5, 0.8, 0.1),
+                     WaveComponent(0.2, 7.0, -1.0, 0.6, 2.0)))
+    boats = [boat_factory(model="mesh", linear=(500, 4000, 2e4, 1e4, 1e4, 3000)),
+             boat_factory(model="sample_points", linear=(500, 4000, 2e4, 1e4, 1e4, 3000)),
+             boat_factory(model="mesh", com=(0, 0, -0.2))]
+    boats[2] = type(boats[2])(**{**boats[2].__dict__, "min_wavelength": 10.0,
+                                 "control": ControlSettings(mode="kinematic", attitude="pd")})
+    starts = [initial_state(p, [10.0 * i, 0.0, 0.0], yaw=0.3 * i) for i, p in enumerate(boats)]
+    inputs = [BoatInputs(1.0, 0.2), BoatInputs(-0.5, -0.1), BoatInputs(0.7, 0.3)]
+    alone, together = list(starts), list(starts)
+    for _ in range(300):
+        alone = [step(p, s, u, sea, DT) for p, s, u in zip(boats, alone, inputs, strict=True)]
+        together = [s for s, _ in step_many(boats, together, inputs, sea, DT)]
+    for a, b in zip(alone, together, strict=True):
+        assert np.allclose(a.position, b.position, rtol=0, atol=1e-9)
+        assert np.allclose(a.velocity, b.velocity, rtol=0, atol=1e-9)
+        assert np.allclose(a.orientation, b.orientation, rtol=0, atol=1e-12)
