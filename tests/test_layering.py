@@ -5,7 +5,8 @@ import sys
 
 CORE = [
     "ocean_sim.constants", "ocean_sim.spectra", "ocean_sim.waves",
-    "boat_dynamics.boat", "boat_dynamics.buoyancy", "boat_dynamics.commands",
+    "boat_dynamics.bags", "boat_dynamics.boat", "boat_dynamics.buoyancy",
+    "boat_dynamics.commands", "boat_dynamics.plot",
     "boat_dynamics.control", "boat_dynamics.diagnostics",
     "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.hull_drag",
     "boat_dynamics.keel",
@@ -36,7 +37,8 @@ def test_every_core_module_is_listed():
     src = Path(__file__).resolve().parents[1] / "src"
     adapters = {"ocean_sim.node", "ocean_sim.client", "boat_dynamics.node",
                 "boat_dynamics.simulation",
-                "boat_dynamics.recording", "boat_dynamics.cli", "boat_dynamics.__main__"}
+                "boat_dynamics.recording", "boat_dynamics.cli", "boat_dynamics.__main__",
+                "boat_dynamics.teleop"}
     modules = {
         ".".join(p.relative_to(src).with_suffix("").parts)
         for pkg in ("ocean_sim", "boat_dynamics") for p in (src / pkg).glob("*.py")

@@ -64,7 +64,53 @@ def _parser() -> argparse.ArgumentParser:
                        help="simulation time to sample at, s (default: the ocean's now)")
     query.add_argument("--timeout", type=_positive_seconds, default=5.0, metavar="S",
                        help="seconds to wait for the ocean (default 5)")
+    record = verbs.add_parser("record", help="record topics to a rosbag2 (MCAP) bag",
+                              description="Record TOPICs (default: every topic, new ones as "
+                                          "they appear) until Ctrl-C.")
+    record.add_argument("topics", nargs="*", metavar="TOPIC")
+    record.add_argument("-o", "--output", required=True, metavar="DIR",
+                        help="new directory for the bag")
+    compare = verbs.add_parser(
+        "compare", help="compare two bags topic by topic within tolerances",
+        description="Align two bags by message stamp and report per topic and field the "
+                    "largest difference. Exit 0 within tolerance, 1 outside, 2 unreadable.")
+    compare.add_argument("a", metavar="A")
+    compare.add_argument("b", metavar="B")
+    compare.add_argument("--topics", nargs="+", metavar="TOPIC")
+    compare.add_argument("--tol", action="append", default=[], metavar="FIELD=VALUE",
+                         help="absolute tolerance for fields matching FIELD (fnmatch, e.g. "
+                              "'*.position.*=0.01' or '/odom:twist.*=1e-3'); default 1e-9")
+    plot = verbs.add_parser("plot", help="plot a recorded run to a PNG")
+    plot.add_argument("bag", metavar="BAG")
+    plot.add_argument("-o", "--output", metavar="FILE.png")
+    teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
+    teleop.add_argument("--ns", default="", metavar="NAME",
+                        help="the boat's namespace (default: the root namespace)")
     return parser
+
+
+def _compare(args: argparse.Namespace) -> int:
+    from boat_dynamics.bags import BagError, compare_bags
+
+    tolerances = {}
+    for item in args.tol:
+        pattern, sep, value = item.rpartition("=")
+        try:
+            tol = float(value)
+        except ValueError:
+            tol = math.nan
+        if not sep or not pattern or not math.isfinite(tol) or tol < 0:
+            print(f"boatsim compare: error: --tol {item!r}: expected FIELD=VALUE with a "
+                  "number >= 0", file=sys.stderr)
+            return 2
+        tolerances[pattern] = tol
+    try:
+        result = compare_bags(args.a, args.b, args.topics, tolerances)
+    except BagError as exc:
+        print(f"boatsim compare: error: {exc}", file=sys.stderr)
+        return 2
+    print(result.report())
+    return 0 if result.ok else 1
 
 
 def _finite(text: str) -> float:
@@ -145,6 +191,30 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _run(args)
         if args.verb == "query":
             return _query(args)
+        if args.verb == "compare":
+            return _compare(args)
+        if args.verb == "record":
+            from boat_dynamics.recording import RecordError, record
+
+            try:
+                return record(args.topics, args.output)
+            except RecordError as exc:
+                print(f"boatsim record: error: {exc}", file=sys.stderr)
+                return 2
+        if args.verb == "plot":
+            from boat_dynamics.bags import BagError
+            from boat_dynamics.plot import plot_bag
+
+            try:
+                print(f"boatsim: wrote {plot_bag(args.bag, args.output)}")
+                return 0
+            except BagError as exc:
+                print(f"boatsim plot: error: {exc}", file=sys.stderr)
+                return 2
+        if args.verb == "teleop":
+            from boat_dynamics.teleop import teleop
+
+            return teleop(args.ns)
     except KeyboardInterrupt:
         return 0
     return 2

@@ -14,15 +14,16 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import TextIO
 
 from rclpy.node import Node
-from rclpy.qos import QoSProfile
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rosbags.rosbag2 import StoragePlugin, Writer
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 from boat_msgs_py.tap import Tap
 
-__all__ = ["BagWriter", "RecordError", "TopicRecorder"]
+__all__ = ["BagWriter", "RecordError", "TopicRecorder", "record"]
 
 
 class RecordError(RuntimeError):
@@ -104,18 +105,21 @@ class TopicRecorder:
     """
 
     def __init__(self, node: Node, bag: BagWriter, stamp_ns: Callable[[], int],
-                 skip: set[str], qos: QoSProfile) -> None:
+                 skip: set[str], qos: QoSProfile, only: set[str] | None = None) -> None:
         self._node = node
         self._bag = bag
         self._stamp_ns = stamp_ns
         self._skip = skip
         self._qos = qos
+        self._only = only
         self._subs: dict[str, object] = {}
 
     def discover(self) -> None:
         """Subscribe to topics that appeared since the last call."""
         for topic, types in self._node.get_topic_names_and_types():
             if topic in self._subs or topic in self._skip or not types:
+                continue
+            if self._only is not None and topic not in self._only:
                 continue
             msgtype = types[0]
             pkg, kind, name = msgtype.split("/")
@@ -126,11 +130,78 @@ class TopicRecorder:
                     f"not recording {topic}: type {msgtype} is not installed here")
                 self._subs[topic] = None
                 continue
+            qos = self._qos
+            publishers = self._node.get_publishers_info_by_topic(topic)
+            if publishers and all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
+                                  for p in publishers):
+                # latched topics (/ocean/wave_field): ask for what was published before us
+                qos = QoSProfile(depth=self._qos.depth, reliability=self._qos.reliability,
+                                 durability=DurabilityPolicy.TRANSIENT_LOCAL)
             self._subs[topic] = self._node.create_subscription(
-                cls, topic, self._writer_for(topic, msgtype), self._qos, raw=True)
+                cls, topic, self._writer_for(topic, msgtype), qos, raw=True)
             self._node.get_logger().info(f"recording {topic} [{msgtype}]")
 
     def _writer_for(self, topic: str, msgtype: str) -> Callable[[bytes], None]:
         def on_message(data: bytes) -> None:
             self._bag.write(topic, msgtype, data, self._stamp_ns())
         return on_message
+
+
+def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
+    """`boatsim record`: record topics (all when empty) until Ctrl-C; returns the exit status.
+
+    New topics are picked up as they appear (discovery every second); a live line shows the
+    count per topic; SIGINT/SIGTERM finalize the bag.
+
+    Raises:
+        RecordError: the bag directory cannot be created.
+    """
+    import signal
+    import threading
+    import time
+
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.signals import SignalHandlerOptions
+
+    bag = BagWriter(out)
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set())
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    node = rclpy.create_node("boatsim_record")
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    tty = status.isatty()
+    try:
+        recorder = TopicRecorder(
+            node, bag, time.time_ns, skip=set(),
+            qos=QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE),
+            only=set(topics) if topics else None)
+        node.get_logger().info(f"recording {'all topics' if not topics else ' '.join(topics)}"
+                               f" to {bag.path}; Ctrl-C to stop")
+        next_discovery = next_status = 0.0
+        while not stop.is_set():
+            now = time.monotonic()
+            if now >= next_discovery:
+                recorder.discover()
+                next_discovery = now + 1.0
+            if now >= next_status:
+                counts = "  ".join(f"{t} {n}" for t, n in sorted(bag.counts.items()))
+                line = f"{sum(bag.counts.values())} messages: {counts}"
+                status.write(("\r" + line[:200]) if tty else line + "\n")
+                status.flush()
+                next_status = now + (0.5 if tty else 5.0)
+            executor.spin_once(timeout_sec=0.05)
+        return 0
+    finally:
+        bag.close()
+        if tty:
+            status.write("\n")
+        print(f"boatsim: wrote {sum(bag.counts.values())} messages on {len(bag.counts)} "
+              f"topics to {bag.path}", file=status)
+        executor.shutdown(timeout_sec=0.1)
+        node.destroy_node()
+        rclpy.try_shutdown()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

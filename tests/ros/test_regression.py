@@ -1,0 +1,160 @@
+"""record, compare, plot and teleop: the regression-testing tools, end to end."""
+
+import os
+import pty
+import signal
+import struct
+import subprocess
+import sys
+import termios
+import time
+
+import pytest
+from rosbags.highlevel import AnyReader
+from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.typesys import Stores, get_typestore
+from std_msgs.msg import Float64
+
+from boat_dynamics.bags import compare_bags
+
+SCRIPTED = """
+ocean: {components: [{amplitude: 0.3, wavelength: 25.0, steepness: 0.5}]}
+boats: [{commands: [{t: 0, thrust: 1.0, rudder: 0.0}, {t: 2, thrust: 1.0, rudder: 0.3}]}]
+"""
+
+
+def _cli(*args, timeout=120):
+    return subprocess.run([sys.executable, "-m", "boat_dynamics", *args], capture_output=True,
+                          text=True, timeout=timeout)
+
+
+@pytest.fixture(scope="module")
+def two_runs(tmp_path_factory):
+    d = tmp_path_factory.mktemp("runs")
+    (d / "s.yaml").write_text(SCRIPTED)
+    for name in ("a", "b"):
+        out = _cli("run", str(d / "s.yaml"), "--fast", "--duration", "4", "--record",
+                   str(d / name))
+        assert out.returncode == 0, out.stderr
+    return d
+
+
+def _perturbed_copy(src, dst, topic="/odom", index=50, dx=0.01):
+    """Copy one topic of a bag, moving message ``index`` by dx in x."""
+    store = get_typestore(Stores.ROS2_JAZZY)
+    with AnyReader([src]) as reader, Writer(dst, version=9,
+                                           storage_plugin=StoragePlugin.MCAP) as writer:
+        conn_in = next(c for c in reader.connections if c.topic == topic)
+        conn_out = writer.add_connection(topic, conn_in.msgtype, typestore=store)
+        for i, (_, stamp, raw) in enumerate(reader.messages(connections=[conn_in])):
+            msg = reader.deserialize(raw, conn_in.msgtype)
+            if i == index:
+                msg.pose.pose.position.x += dx
+                when = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+            writer.write(conn_out, stamp, store.serialize_cdr(msg, conn_in.msgtype))
+    return when
+
+
+def test_same_scenario_same_commands_give_identical_bags(two_runs):
+    result = compare_bags(two_runs / "a", two_runs / "b")
+    assert result.ok, result.report()
+    topics = {t.topic for t in result.topics}
+    assert {"/odom", "/wrench/total", "/ocean/wave_field", "/diagnostics"} <= topics
+    assert "/rosout" not in topics
+    odom = next(t for t in result.topics if t.topic == "/odom")
+    assert odom.matched == 201 and all(f.max_abs == 0.0 for f in odom.fields)
+    assert _cli("compare", str(two_runs / "a"), str(two_runs / "b")).returncode == 0
+
+
+def test_compare_detects_a_perturbation_and_names_the_field(two_runs, tmp_path):
+    when = _perturbed_copy(two_runs / "a", tmp_path / "p")
+    result = compare_bags(two_runs / "a", tmp_path / "p", topics=["/odom"])
+    assert not result.ok
+    worst = result.topics[0].fields[0]
+    assert worst.field == "pose.pose.position.x"
+    assert worst.max_abs == pytest.approx(0.01, rel=1e-9)
+    assert worst.stamp_ns / 1e9 == pytest.approx(when)
+    out = _cli("compare", str(two_runs / "a"), str(tmp_path / "p"), "--topics", "/odom")
+    assert out.returncode == 1
+    assert "pose.pose.position.x: max |a - b| = 0.01 at t = " in out.stdout
+    ok = _cli("compare", str(two_runs / "a"), str(tmp_path / "p"), "--topics", "/odom",
+              "--tol", "*.position.*=0.02")
+    assert ok.returncode == 0, ok.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (["compare", "/nonexistent/bag", "{a}"], "no such bag"),
+        (["compare", "{a}", "{a}", "--topics", "/nope"], "topic(s) not in the bag: /nope"),
+        (["compare", "{corrupt}", "{a}"], "not a readable rosbag2 bag"),
+        (["compare", "{a}", "{a}", "--tol", "x=abc"], "expected FIELD=VALUE"),
+        (["plot", "/nonexistent/bag"], "no such bag"),
+    ],
+)
+def test_bad_inputs_exit_2_with_one_line(two_runs, tmp_path, args, fragment):
+    corrupt = tmp_path / "corrupt"
+    corrupt.mkdir()
+    (corrupt / "metadata.yaml").write_text("this: [is not a bag\n")
+    args = [a.format(a=two_runs / "a", corrupt=corrupt) for a in args]
+    out = _cli(*args)
+    assert out.returncode == 2
+    assert fragment in out.stderr and "Traceback" not in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+
+
+def test_plot_writes_a_png_of_the_expected_size(two_runs, tmp_path):
+    target = tmp_path / "run.png"
+    out = _cli("plot", str(two_runs / "a"), "-o", str(target))
+    assert out.returncode == 0, out.stderr
+    data = target.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20_000
+    width, height = struct.unpack(">II", data[16:24])
+    assert (width, height) == (1200, 900)
+
+
+def test_standalone_record_picks_up_topics_including_latched_ones(boatsim, tmp_path):
+    bag = tmp_path / "rec"
+    rec = boatsim("record", "/odom", "/ocean/wave_field", "-o", str(bag), name="record")
+    time.sleep(2.0)
+    sim = boatsim("run", "--duration", "3")
+    assert sim.wait(timeout=60) == 0
+    time.sleep(1.0)
+    assert rec.stop(signal.SIGINT) == 0
+    out = rec.output()
+    assert "wrote" in out and "Traceback" not in out
+    with AnyReader([bag]) as reader:
+        counts = {c.topic: c.msgcount for c in reader.connections}
+    assert set(counts) == {"/odom", "/ocean/wave_field"}
+    assert counts["/ocean/wave_field"] == 1
+    assert counts["/odom"] > 100  # 50 Hz for 3 s, discovered within a second
+
+
+def test_teleop_through_a_pty_sends_commands_and_restores_the_terminal(probe):
+    thrusts, rudders = [], []
+    probe.node.create_subscription(Float64, "/cmd_thrust", lambda m: thrusts.append(m.data), 10)
+    probe.node.create_subscription(Float64, "/cmd_rudder", lambda m: rudders.append(m.data), 10)
+    master, slave = pty.openpty()
+    before = termios.tcgetattr(slave)
+    proc = subprocess.Popen([sys.executable, "-m", "boat_dynamics", "teleop"], stdin=slave,
+                            stdout=slave, stderr=slave, env=os.environ.copy(), close_fds=True)
+    try:
+        probe.spin_until(lambda: thrusts, 30.0, "teleop's first /cmd_thrust")
+        os.write(master, b"www")
+        probe.spin_until(lambda: thrusts and thrusts[-1] == pytest.approx(0.3), 10.0, "0.3")
+        os.write(master, b"\x1b[D\x1b[D")  # left arrow twice: 0.1 rad to port
+        probe.spin_until(lambda: rudders and rudders[-1] == pytest.approx(0.1), 10.0, "0.1")
+        os.write(master, b"s")
+        probe.spin_until(lambda: thrusts[-1] == pytest.approx(0.2), 10.0, "0.2")
+        os.write(master, b" ")
+        probe.spin_until(lambda: thrusts[-1] == 0.0 and rudders[-1] == 0.0, 10.0, "stop")
+        os.write(master, b"q")
+        assert proc.wait(timeout=15) == 0
+        assert termios.tcgetattr(slave) == before
+        screen = os.read(master, 65536).decode(errors="ignore")
+        assert "throttle +0.30" in screen or "throttle" in screen
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        os.close(master)
+        os.close(slave)
