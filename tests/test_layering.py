@@ -38,7 +38,7 @@ def test_every_core_module_is_listed():
     adapters = {"ocean_sim.node", "ocean_sim.client", "boat_dynamics.node",
                 "boat_dynamics.simulation",
                 "boat_dynamics.recording", "boat_dynamics.cli", "boat_dynamics.__main__",
-                "boat_dynamics.teleop"}
+                "boat_dynamics.teleop", "boat_dynamics.replay"}
     modules = {
         ".".join(p.relative_to(src).with_suffix("").parts)
         for pkg in ("ocean_sim", "boat_dynamics") for p in (src / pkg).glob("*.py")

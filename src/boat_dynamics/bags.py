@@ -31,8 +31,8 @@ __all__ = [
 DEFAULT_TOLERANCE = 1e-9
 
 #: Topics left out of a comparison unless asked for: logs and parameter events carry wall
-#: time and process ids, never equal between two runs.
-UNCOMPARED_TOPICS = ("/rosout", "/parameter_events")
+#: time and process ids, never equal between two runs; lockstep grants are protocol.
+UNCOMPARED_TOPICS = ("/rosout", "/parameter_events", "/boatsim/lockstep")
 
 
 class BagError(ValueError):

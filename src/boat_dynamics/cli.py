@@ -44,6 +44,9 @@ def _parser() -> argparse.ArgumentParser:
                      help="stop after S seconds of simulated time")
     run.add_argument("--record", metavar="DIR",
                      help="write every topic to a rosbag2 (MCAP) bag in the new directory DIR")
+    run.add_argument("--lockstep", action="store_true",
+                     help="with --fast: advance only as far as `boatsim replay` grants, so a "
+                          "replay gives the same result on any machine")
     run.add_argument("--processes", action="store_true",
                      help="run the ocean and each boat's dynamics in processes of their own "
                           "(real time only)")
@@ -83,6 +86,17 @@ def _parser() -> argparse.ArgumentParser:
     plot = verbs.add_parser("plot", help="plot a recorded run to a PNG")
     plot.add_argument("bag", metavar="BAG")
     plot.add_argument("-o", "--output", metavar="FILE.png")
+    replay = verbs.add_parser(
+        "replay", help="republish a bag's command topics with their recorded timing",
+        description="Republish the command topics of BAG (default: every */cmd_thrust and "
+                    "*/cmd_rudder) at their recorded simulation times. Against `boatsim run "
+                    "--fast --lockstep` the simulation never runs ahead of the commands.")
+    replay.add_argument("bag", metavar="BAG")
+    replay.add_argument("--topics", nargs="+", metavar="TOPIC")
+    replay.add_argument("--rate", type=_positive_seconds, default=1.0, metavar="R",
+                        help="speed factor against a real-time simulation (default 1)")
+    replay.add_argument("--timeout", type=_positive_seconds, default=30.0, metavar="S",
+                        help="seconds to wait for the simulation (default 30)")
     teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
     teleop.add_argument("--ns", default="", metavar="NAME",
                         help="the boat's namespace (default: the root namespace)")
@@ -175,9 +189,13 @@ def _run(args: argparse.Namespace) -> int:
         from boat_dynamics.simulation import run_processes
 
         return run_processes(scenario, str(path), RunOptions(duration=args.duration))
+    if args.lockstep and not args.fast:
+        print("boatsim: error: --lockstep needs --fast (a real-time run follows the wall "
+              "clock)", file=sys.stderr)
+        return 2
     try:
         return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
-                                        record=args.record))
+                                        record=args.record, lockstep=args.lockstep))
     except RecordError as exc:
         print(f"boatsim: error: {exc}", file=sys.stderr)
         return 2
@@ -210,6 +228,15 @@ def main(argv: Sequence[str] | None = None) -> int:
                 return 0
             except BagError as exc:
                 print(f"boatsim plot: error: {exc}", file=sys.stderr)
+                return 2
+        if args.verb == "replay":
+            from boat_dynamics.bags import BagError
+            from boat_dynamics.replay import ReplayError, replay
+
+            try:
+                return replay(args.bag, args.topics, args.rate, args.timeout)
+            except (BagError, ReplayError) as exc:
+                print(f"boatsim replay: error: {exc}", file=sys.stderr)
                 return 2
         if args.verb == "teleop":
             from boat_dynamics.teleop import teleop

@@ -17,8 +17,9 @@ from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 from rclpy.node import Node
+from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
-from std_msgs.msg import Float64
+from std_msgs.msg import Float64, Float64MultiArray
 
 from boat_dynamics.boat import (
     BoatInputs,
@@ -133,6 +134,11 @@ class DynamicsNode(Node):
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
         self.boats = [self._make_boat(spec) for spec in scenario.boats]
+        self.commands_received = 0
+        self.granted_until = 0.0  # lockstep: may step while t < this ...
+        self.granted_commands = 0  # ... once this many commands have arrived
+        self._lockstep_sub = self.create_subscription(
+            Float64MultiArray, names.LOCKSTEP, self._on_lockstep, COMMAND_QOS)
         self._mode_params = {}
         for boat in self.boats:
             name = f"{boat.spec.name}.control_mode" if boat.spec.name else "control_mode"
@@ -167,13 +173,15 @@ class DynamicsNode(Node):
             rudder_topic = names.boat_topic(spec.name, names.CMD_RUDDER)
             boat.subs.append(self.create_subscription(
                 Float64, thrust_topic,
-                lambda msg, b=boat, tp=thrust_topic: self._on_thrust(b, tp, msg.data),
+                lambda msg, b=boat, tp=thrust_topic: self._on_thrust(b, tp, msg),
                 COMMAND_QOS))
             boat.subs.append(self.create_subscription(
                 Float64, rudder_topic,
                 lambda msg, b=boat, tp=rudder_topic, m=max_rudder: self._on_rudder(
-                    b, tp, msg.data, m),
+                    b, tp, msg, m),
                 COMMAND_QOS))
+            if self._tap is not None:  # recorded here, at the simulation time they arrive
+                self._tap.topics.update({thrust_topic, rudder_topic})
         pos, _ = reference_pose(spec.params, boat.state)
         self.get_logger().info(
             f"boat {label}: mass {spec.params.mass:g} kg, start at "
@@ -218,7 +226,30 @@ class DynamicsNode(Node):
         self.get_logger().info(
             f"{'received' if first else 'updated'} sea state: {len(sea.components)} components")
 
-    def _on_thrust(self, boat: _Boat, topic: str, raw: float) -> None:
+    def _on_lockstep(self, msg: Float64MultiArray) -> None:
+        if len(msg.data) >= 2:
+            self.granted_until = max(self.granted_until, float(msg.data[0]))
+            self.granted_commands = max(self.granted_commands, int(msg.data[1]))
+
+    def repeat_clock(self) -> None:
+        """Republish /clock at the current time (lockstep hold: late joiners see it), unrecorded."""
+        if self._clock_pub is not None:
+            stamp = seconds_to_time(self._sim_clock.epoch + self._sim_clock.t)
+            self._clock_pub.publish_untapped(Clock(clock=stamp))
+
+    def may_step(self) -> bool:
+        """Lockstep: the replayer has granted the next step and its commands have arrived."""
+        return (self._sim_clock.t < self.granted_until - 1e-9
+                and self.commands_received >= self.granted_commands)
+
+    def _record_command(self, topic: str, msg: Float64) -> None:
+        self.commands_received += 1
+        if self._tap is not None:
+            self._tap.sink(topic, "std_msgs/msg/Float64", serialize_message(msg))
+
+    def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
+        self._record_command(topic, msg)
+        raw = msg.data
         checked = check_command(raw, -1.0, 1.0)
         if checked.problem:
             self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
@@ -228,7 +259,9 @@ class DynamicsNode(Node):
         boat.last_thrust_t = self._sim_clock.t
         boat.timed_out = False
 
-    def _on_rudder(self, boat: _Boat, topic: str, raw: float, max_angle: float) -> None:
+    def _on_rudder(self, boat: _Boat, topic: str, msg: Float64, max_angle: float) -> None:
+        self._record_command(topic, msg)
+        raw = msg.data
         checked = check_command(raw, -max_angle, max_angle, "rad")
         if checked.problem:
             self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)

@@ -56,6 +56,7 @@ class RunOptions:
         boat: the boat of a ``boat`` role.
         epoch: s (wall clock) of simulation time 0, shared by the processes of a run; None =
             now (or 0 with ``fast``).
+        lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
     """
 
     fast: bool = False
@@ -64,6 +65,7 @@ class RunOptions:
     role: str = "all"
     boat: str | None = None
     epoch: float | None = None
+    lockstep: bool = False
 
 
 def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
@@ -191,13 +193,24 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         next_discovery = time.monotonic() + _DISCOVERY_PERIOD
         next_spin = 0.0
         while (duration is None or clock.t < duration - 0.5 / sim.rate_hz) and not stop.is_set():
+            if options.lockstep and dynamics is not None:
+                next_repeat = time.monotonic() + 0.1
+                while not dynamics.may_step() and not stop.is_set():
+                    executor.spin_once(timeout_sec=0.01)
+                    if time.monotonic() >= next_repeat:
+                        dynamics.repeat_clock()
+                        next_repeat = time.monotonic() + 0.1
+                if stop.is_set():
+                    break
             if dynamics is not None:
                 dynamics.advance()
             else:
                 clock.steps += 1
             if ocean is not None:
                 ocean.advance(clock.t)
-            if fast:
+            if fast and options.lockstep:
+                _spin_pending(executor)
+            elif fast:
                 if time.monotonic() >= next_spin:
                     _spin_pending(executor)
                     next_spin = time.monotonic() + _FAST_SPIN_PERIOD

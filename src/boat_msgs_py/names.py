@@ -10,6 +10,7 @@ __all__ = [
     "CMD_RUDDER",
     "CMD_THRUST",
     "DIAGNOSTICS",
+    "LOCKSTEP",
     "ODOM",
     "POSE",
     "SAMPLE_SURFACE",
@@ -36,6 +37,9 @@ SAMPLE_SURFACE = "/ocean/sample_surface"
 #: sensor_msgs/PointCloud2 of the surface around the boats, for viewers (RViz, Foxglove).
 SURFACE_CLOUD = "/ocean/surface"
 CLOCK = "/clock"
+#: std_msgs/Float64MultiArray [T, n]: a replayer's grant "advance while t < T; I have sent n
+#: command messages" (``boatsim run --fast --lockstep`` obeys it).
+LOCKSTEP = "/boatsim/lockstep"
 #: diagnostic_msgs/DiagnosticArray, one status per boat.
 DIAGNOSTICS = "/diagnostics"
 

@@ -61,3 +61,7 @@ class TappedPublisher:
         data = serialize_message(msg)
         self._pub.publish(data)
         self._tap.sink(self.topic, self._type, data)
+
+    def publish_untapped(self, msg: object) -> None:
+        """Publish ``msg`` without handing it to the tap (a repeat the bag must not hold)."""
+        self._pub.publish(msg)

@@ -158,3 +158,59 @@ def test_teleop_through_a_pty_sends_commands_and_restores_the_terminal(probe):
             proc.kill()
         os.close(master)
         os.close(slave)
+
+
+def _command_bag(path):
+    """A bag with commands only: thrust and rudder at chosen simulation times."""
+    store = get_typestore(Stores.ROS2_JAZZY)
+    plan = [(0.0, "/cmd_thrust", 1.0), (0.0, "/cmd_rudder", 0.0), (0.8, "/cmd_thrust", 1.0),
+            (1.0, "/cmd_rudder", 0.3), (1.6, "/cmd_thrust", 1.0), (2.37, "/cmd_thrust", -0.5),
+            (2.4, "/cmd_rudder", -0.2), (3.1, "/cmd_thrust", 0.8)]
+    Float64Msg = store.types["std_msgs/msg/Float64"]
+    with Writer(path, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        conns = {t: writer.add_connection(t, "std_msgs/msg/Float64", typestore=store)
+                 for t in ("/cmd_thrust", "/cmd_rudder")}
+        for t, topic, value in plan:
+            writer.write(conns[topic], round(t * 1e9),
+                         store.serialize_cdr(Float64Msg(data=value), "std_msgs/msg/Float64"))
+    return plan
+
+
+def test_two_lockstep_replays_give_identical_outputs(boatsim, tmp_path):
+    plan = _command_bag(tmp_path / "commands")
+    runs = []
+    for name in ("a", "b"):
+        sim = boatsim("run", "--fast", "--lockstep", "--duration", "4", "--record",
+                      str(tmp_path / name), name=f"sim_{name}")
+        out = _cli("replay", str(tmp_path / "commands"), timeout=60)
+        assert out.returncode == 0, out.stderr
+        assert sim.wait(timeout=60) == 0
+        runs.append(tmp_path / name)
+    result = compare_bags(*runs)
+    assert result.ok, result.report()
+    by_topic = {t.topic: t for t in result.topics}
+    assert by_topic["/cmd_thrust"].matched == 5 and by_topic["/cmd_rudder"].matched == 3
+    # each command took effect at the first step at or after its time: the thrust of 2.37 s
+    # shows in the wrench at 2.4 s (the next 10 Hz sample after the 2.37 s step boundary)
+    with AnyReader([runs[0]]) as reader:
+        conns = [c for c in reader.connections if c.topic in ("/cmd_thrust", "/wrench/thrust")]
+        seen = {"/cmd_thrust": [], "/wrench/thrust": []}
+        for conn, stamp, raw in reader.messages(connections=conns):
+            seen[conn.topic].append((stamp, reader.deserialize(raw, conn.msgtype)))
+    stamps = [s / 1e9 for s, _ in seen["/cmd_thrust"]]
+    assert stamps == pytest.approx([t for t, topic, _ in plan if topic == "/cmd_thrust"],
+                                   abs=1e-9)
+    thrust_at = {round(s / 1e9, 3): m.wrench.force.x for s, m in seen["/wrench/thrust"]}
+    assert thrust_at[2.3] == pytest.approx(2000.0) and thrust_at[2.4] == pytest.approx(-1000.0)
+
+
+def test_replay_without_a_simulation_or_commands_exits_2(tmp_path):
+    _command_bag(tmp_path / "commands")
+    out = _cli("replay", str(tmp_path / "commands"), "--timeout", "1")
+    assert out.returncode == 2 and "waiting for a simulation" in out.stderr
+    assert "Traceback" not in out.stderr
+    store = get_typestore(Stores.ROS2_JAZZY)
+    with Writer(tmp_path / "empty", version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        writer.add_connection("/odom", "nav_msgs/msg/Odometry", typestore=store)
+    out = _cli("replay", str(tmp_path / "empty"))
+    assert out.returncode == 2 and "no command topics" in out.stderr
