@@ -130,10 +130,12 @@ class TopicRecorder:
                     f"not recording {topic}: type {msgtype} is not installed here")
                 self._subs[topic] = None
                 continue
-            qos = self._qos
             publishers = self._node.get_publishers_info_by_topic(topic)
-            if publishers and all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
-                                  for p in publishers):
+            if not publishers:
+                continue  # known only from a subscriber so far: wait for a publisher's QoS
+            qos = self._qos
+            if all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
+                   for p in publishers):
                 # latched topics (/ocean/wave_field): ask for what was published before us
                 qos = QoSProfile(depth=self._qos.depth, reliability=self._qos.reliability,
                                  durability=DurabilityPolicy.TRANSIENT_LOCAL)
@@ -150,7 +152,7 @@ class TopicRecorder:
 def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
     """`boatsim record`: record topics (all when empty) until Ctrl-C; returns the exit status.
 
-    New topics are picked up as they appear (discovery every second); a live line shows the
+    New topics are picked up as they appear (discovery every 0.2 s); a live line shows the
     count per topic; SIGINT/SIGTERM finalize the bag.
 
     Raises:
@@ -185,7 +187,7 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
             now = time.monotonic()
             if now >= next_discovery:
                 recorder.discover()
-                next_discovery = now + 1.0
+                next_discovery = now + 0.2  # new topics are caught within 0.2 s
             if now >= next_status:
                 counts = "  ".join(f"{t} {n}" for t, n in sorted(bag.counts.items()))
                 line = f"{sum(bag.counts.values())} messages: {counts}"
