@@ -10,7 +10,7 @@ MSGS_SRC := $(MSGS)/CMakeLists.txt $(MSGS)/package.xml $(wildcard $(MSGS)/msg/*.
 ROSENV := VIRTUAL_ENV=$(abspath $(VENV)) AMENT_PREFIX_PATH=$(abspath $(VENV)) PATH=$(abspath $(VENV))/bin:$$PATH
 ARGS ?=
 
-.PHONY: setup run test bench lint clean
+.PHONY: setup run test bench lint clean regold
 
 setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
 
@@ -44,6 +44,9 @@ test: setup
 
 bench: setup
 	$(VPY) benchmarks/run.py $(ARGS)
+
+regold: setup
+	$(VPY) tests/golden/regold.py
 
 lint: setup
 	$(VENV)/bin/ruff check src tests benchmarks
