@@ -483,12 +483,12 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         keel_rate=keel_rate,
         stokes_drift=_flag(d, "stokes_drift", key, False),
     )
-    if ratio is not None or "quadratic" not in dd:
-        params = _default_damping(params, dd, ratio, f"{key}.damping")
     try:
         offset = equilibrium_height(params)
     except ValueError as exc:
         raise ScenarioError(f"{key}.mass", params.mass, str(exc)) from exc
+    if ratio is not None or "quadratic" not in dd:
+        params = _default_damping(params, dd, ratio, offset)
     params = replace(params, control=replace(control, height_offset=offset))
     initial = initial_state(
         params,
@@ -508,20 +508,17 @@ DEFAULT_DRAG_COEFFICIENTS = (0.5, 1.0, 1.0)
 
 
 def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.ndarray | None,
-                     key: str) -> BoatParams:
+                     z_eq: float) -> BoatParams:
     """Fill the damping the scenario left out with physically derived defaults.
 
     linear += critical_damping(ratio) (heave, roll, pitch); quadratic, when not given:
     1/2 rho C_d A on the projected areas at the equilibrium draft d (surge B d, sway L d,
     heave L B) and, by strip theory of the sway drag along the hull, yaw rho C_d,y d L^4 / 64.
+    ``z_eq`` is the upright equilibrium height of the reference point (flat water).
     """
-    try:
-        z_eq = equilibrium_height(params)
-    except ValueError as exc:
-        raise ScenarioError(key.rsplit(".", 1)[0] + ".mass", params.mass, str(exc)) from exc
     linear, quadratic = params.damping_linear, params.damping_quadratic
     if ratio is not None:
-        linear = linear + critical_damping(params, ratio)
+        linear = linear + critical_damping(params, ratio, z_eq)
     if "quadratic" not in given:
         hull = params.hull
         bottom = float(np.min(params.buoyancy.mesh.vertices[:, 2])

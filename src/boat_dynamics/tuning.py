@@ -33,26 +33,47 @@ def _vertical_buoyancy(params: BoatParams, z: float, roll: float = 0.0,
 def equilibrium_height(params: BoatParams) -> float:
     """Height z (m) of the hull reference point where buoyancy carries the weight, upright.
 
-    Bisection over the hull's height in flat water. Raises ValueError for a hull that sinks.
+    Regula falsi (Illinois variant) over the hull's height in flat water, to 1e-10 of the
+    weight: buoyancy is piecewise linear in z for wall-sided hulls, so a few evaluations
+    suffice. Raises ValueError for a hull that sinks.
     """
     weight = params.mass * params.gravity
     half = params.hull.height / 2
-    low, high = -half, half  # fully submerged .. just touching
-    if _vertical_buoyancy(params, low)[0] < weight:
+
+    def excess(z: float) -> float:
+        return _vertical_buoyancy(params, z)[0] - weight
+
+    low, high = -half, half  # fully submerged (excess > 0) .. just touching (excess < 0)
+    f_low, f_high = excess(low), excess(high)
+    if f_low < 0.0:
         raise ValueError(f"the hull sinks: fully submerged buoyancy is less than its weight "
                          f"{weight:.4g} N (density above the water's?)")
-    for _ in range(60):
-        mid = 0.5 * (low + high)
-        if _vertical_buoyancy(params, mid)[0] > weight:
-            low = mid
+    side = 0
+    z = 0.5 * (low + high)
+    for _ in range(100):
+        z = (low * f_high - high * f_low) / (f_high - f_low)
+        f = excess(z)
+        if abs(f) <= 1e-10 * weight or high - low <= 1e-12 * params.hull.height:
+            break
+        if f > 0.0:
+            low, f_low = z, f
+            if side == 1:
+                f_high *= 0.5
+            side = 1
         else:
-            high = mid
-    return 0.5 * (low + high)
+            high, f_high = z, f
+            if side == -1:
+                f_low *= 0.5
+            side = -1
+    return z
 
 
-def hydrostatic_stiffness(params: BoatParams) -> np.ndarray:
-    """(3,) heave N/m, roll and pitch N m/rad restoring stiffness at the upright equilibrium."""
-    z0 = equilibrium_height(params)
+def hydrostatic_stiffness(params: BoatParams, z0: float | None = None) -> np.ndarray:
+    """(3,) heave N/m, roll and pitch N m/rad restoring stiffness at the upright equilibrium.
+
+    ``z0``: the equilibrium height if already known (:func:`equilibrium_height`).
+    """
+    z0 = equilibrium_height(params) if z0 is None else z0
     dz = 1e-3 * params.hull.height
     da = 1e-3
     k_heave = -(_vertical_buoyancy(params, z0 + dz)[0]
@@ -64,14 +85,15 @@ def hydrostatic_stiffness(params: BoatParams) -> np.ndarray:
     return np.array([k_heave, k_roll, k_pitch])
 
 
-def critical_damping(params: BoatParams, ratios: np.ndarray) -> np.ndarray:
+def critical_damping(params: BoatParams, ratios: np.ndarray, z0: float | None = None
+                     ) -> np.ndarray:
     """Linear damping (6,) giving damping ratios zeta = [heave, roll, pitch] (surge/sway/yaw 0).
 
     b = zeta * 2 sqrt(k m) per DOF, k from :func:`hydrostatic_stiffness`, m the rigid-body
     mass or inertia plus added mass. A DOF with no restoring stiffness (k <= 0: unstable in
-    roll, say) gets no damping from here.
+    roll, say) gets no damping from here. ``z0``: the equilibrium height, if known.
     """
-    k = hydrostatic_stiffness(replace(params, damping_linear=np.zeros(6)))
+    k = hydrostatic_stiffness(replace(params, damping_linear=np.zeros(6)), z0)
     m = np.array([params.mass + params.added_mass[2], params.inertia[0] + params.added_mass[3],
                   params.inertia[1] + params.added_mass[4]])
     b = np.asarray(ratios, dtype=float) * 2.0 * np.sqrt(np.maximum(k, 0.0) * m)
