@@ -51,6 +51,28 @@ def _typestore():
     return store
 
 
+def _bag_qos(profile: QoSProfile):
+    """Rosbags' Qos of an rclpy QoSProfile (enum values are the rmw ones in both)."""
+    from rosbags.interfaces import (
+        Qos,
+        QosDurability,
+        QosHistory,
+        QosLiveliness,
+        QosReliability,
+        QosTime,
+    )
+
+    def span(d) -> QosTime:
+        ns = d.nanoseconds
+        return QosTime(ns // 1_000_000_000, ns % 1_000_000_000)
+
+    return Qos(QosHistory(int(profile.history)), int(profile.depth),
+               QosReliability(int(profile.reliability)), QosDurability(int(profile.durability)),
+               span(profile.deadline), span(profile.lifespan),
+               QosLiveliness(int(profile.liveliness)), span(profile.liveliness_lease_duration),
+               bool(profile.avoid_ros_namespace_conventions))
+
+
 class BagWriter:
     """A rosbag2 bag with MCAP storage, written from serialized (CDR) messages.
 
@@ -72,11 +94,18 @@ class BagWriter:
         self.counts: dict[str, int] = {}
         self._closed = False
 
-    def write(self, topic: str, msgtype: str, data: bytes, stamp_ns: int) -> None:
-        """Append one serialized message of type ``msgtype`` on ``topic`` at ``stamp_ns``."""
+    def write(self, topic: str, msgtype: str, data: bytes, stamp_ns: int,
+              qos: QoSProfile | None = None) -> None:
+        """Append one serialized message of type ``msgtype`` on ``topic`` at ``stamp_ns``.
+
+        ``qos``: the publisher's offered QoS, stored in the bag's metadata with the topic's
+        first message (``ros2 bag play`` offers it again).
+        """
         conn = self._connections.get(topic)
         if conn is None:
-            conn = self._writer.add_connection(topic, msgtype, typestore=self._store)
+            offered = (_bag_qos(qos),) if qos is not None else ()
+            conn = self._writer.add_connection(topic, msgtype, typestore=self._store,
+                                               offered_qos_profiles=offered)
             self._connections[topic] = conn
             self.counts[topic] = 0
         self._writer.write(conn, stamp_ns, data)
@@ -84,7 +113,9 @@ class BagWriter:
 
     def tap(self, stamp_ns: Callable[[], int]) -> Tap:
         """A :class:`Tap` writing into this bag, stamped by ``stamp_ns()`` (ns)."""
-        return Tap(lambda topic, msgtype, data: self.write(topic, msgtype, data, stamp_ns()))
+        tap = Tap(lambda topic, msgtype, data: self.write(topic, msgtype, data, stamp_ns(),
+                                                          tap.qos.get(topic)))
+        return tap
 
     def close(self) -> None:
         """Finalize the bag (metadata.yaml and MCAP summary). Safe to call twice."""
@@ -140,12 +171,14 @@ class TopicRecorder:
                 qos = QoSProfile(depth=self._qos.depth, reliability=self._qos.reliability,
                                  durability=DurabilityPolicy.TRANSIENT_LOCAL)
             self._subs[topic] = self._node.create_subscription(
-                cls, topic, self._writer_for(topic, msgtype), qos, raw=True)
+                cls, topic, self._writer_for(topic, msgtype, publishers[0].qos_profile), qos,
+                raw=True)
             self._node.get_logger().info(f"recording {topic} [{msgtype}]")
 
-    def _writer_for(self, topic: str, msgtype: str) -> Callable[[bytes], None]:
+    def _writer_for(self, topic: str, msgtype: str, offered: QoSProfile
+                    ) -> Callable[[bytes], None]:
         def on_message(data: bytes) -> None:
-            self._bag.write(topic, msgtype, data, self._stamp_ns())
+            self._bag.write(topic, msgtype, data, self._stamp_ns(), offered)
         return on_message
 
 

@@ -31,6 +31,7 @@ class Tap:
     def __init__(self, sink: Callable[[str, str, bytes], None]) -> None:
         self.sink = sink
         self.topics: set[str] = set()
+        self.qos: dict[str, QoSProfile] = {}  # offered QoS per tapped topic
 
 
 class TappedPublisher:
@@ -52,6 +53,7 @@ class TappedPublisher:
         self._tap = tap
         if tap is not None:
             tap.topics.add(topic)
+            tap.qos[topic] = qos
 
     def publish(self, msg: object) -> None:
         """Publish ``msg`` (and hand it to the tap)."""

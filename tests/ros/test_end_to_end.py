@@ -152,7 +152,18 @@ def test_fast_run_with_duration_records_every_message(boatsim, tmp_path):
         for conn, stamp, raw in reader.messages(
                 connections=[c for c in reader.connections if c.topic == "/odom"]):
             last = (stamp, reader.deserialize(raw, conn.msgtype))
-    assert (bag / "metadata.yaml").exists()
+    import yaml
+
+    info = yaml.safe_load((bag / "metadata.yaml").read_text())["rosbag2_bagfile_information"]
+    assert info["storage_identifier"] == "mcap" and info["version"] == 9
+    for entry in info["topics_with_message_count"]:  # what `ros2 bag info` expects
+        assert entry["topic_metadata"]["type_description_hash"].startswith("RIHS01_")
+    with AnyReader([bag]) as reader:
+        qos = {c.topic: c.ext.offered_qos_profiles for c in reader.connections}
+    from rosbags.interfaces import QosDurability, QosReliability
+    assert qos["/ocean/wave_field"][0].durability == QosDurability.TRANSIENT_LOCAL
+    assert qos["/odom"][0].reliability == QosReliability.RELIABLE
+    assert qos["/odom"][0].depth == 10
     # step 0 plus every due step of 2,000: odom at 50 Hz, wrenches at 10 Hz, /clock every step
     assert counts["/odom"] == counts["/pose"] == counts["/twist"] == 1001
     for source in names.WRENCH_SOURCES:

@@ -223,3 +223,38 @@ def test_replay_without_a_simulation_or_commands_exits_2(tmp_path):
         writer.add_connection("/odom", "nav_msgs/msg/Odometry", typestore=store)
     out = _cli("replay", str(tmp_path / "empty"))
     assert out.returncode == 2 and "no command topics" in out.stderr
+
+
+def test_run_record_loses_nothing_with_ten_boats(tmp_path):
+    boats = "\n".join(f"  - {{name: b{i}, initial_pose: {{position: [{12 * i}.0, 0.0, 0.0]}}}}"
+                      for i in range(10))
+    (tmp_path / "fleet.yaml").write_text(f"boats:\n{boats}\n")
+    out = _cli("run", str(tmp_path / "fleet.yaml"), "--fast", "--duration", "2", "--record",
+               str(tmp_path / "bag"), timeout=180)
+    assert out.returncode == 0, out.stderr
+    with AnyReader([tmp_path / "bag"]) as reader:
+        counts = {c.topic: c.msgcount for c in reader.connections}
+    # 200 steps: every 2nd at 50 Hz plus step 0, every 10th at 10 Hz plus step 0
+    for i in range(10):
+        for topic in ("odom", "pose", "twist"):
+            assert counts[f"/b{i}/{topic}"] == 101
+        for source in ("buoyancy", "damping", "drag", "thrust", "rudder", "total"):
+            assert counts[f"/b{i}/wrench/{source}"] == 21
+    assert counts["/clock"] == 201 and counts["/diagnostics"] == 21
+
+
+def test_undecodable_messages_exit_2_with_one_line(two_runs, tmp_path):
+    from rosbags.typesys import get_types_from_msg
+
+    bad = tmp_path / "bad"
+    store = get_typestore(Stores.ROS2_JAZZY)
+    store.register(get_types_from_msg("float64 a\nint32 b", "foo_msgs/msg/Bar"))
+    with Writer(bad, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        conn = writer.add_connection("/odom", "foo_msgs/msg/Bar", typestore=store)
+        writer.write(conn, 0, b"\x00\x01\x00")  # 3 bytes: not a float64 + int32
+    for args in (["compare", str(bad), str(two_runs / "a"), "--topics", "/odom"],
+                 ["plot", str(bad)]):
+        out = _cli(*args)
+        assert out.returncode == 2, out.stderr
+        assert "cannot decode /odom [foo_msgs/msg/Bar]" in out.stderr
+        assert len(out.stderr.strip().splitlines()) == 1 and "Traceback" not in out.stderr
