@@ -202,11 +202,9 @@ def _flag(d: Mapping[str, Any], name: str, key: str, default: bool) -> bool:
 
 
 def _choice(d: Mapping[str, Any], name: str, key: str, default: str,
-            allowed: tuple[str, ...], later: tuple[str, ...] = ()) -> str:
+            allowed: tuple[str, ...]) -> str:
     path = f"{key}.{name}"
     v = d.get(name, default)
-    if v in later:
-        raise ScenarioError(path, v, f"is not implemented yet; allowed now: {', '.join(allowed)}")
     if v not in allowed:
         raise ScenarioError(path, v, f"must be one of: {', '.join(allowed)}")
     return str(v)
