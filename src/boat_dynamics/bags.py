@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import fnmatch
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -54,13 +55,9 @@ def _stamp(msg: object, fallback: int) -> int:
     return int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
 
 
-def read_bag(path: str | Path, topics: Iterable[str] | None = None
-             ) -> dict[str, list[tuple[int, object]]]:
-    """Messages of a bag per topic, as (stamp ns, deserialized message), in bag order.
-
-    Raises:
-        BagError: the bag is missing or unreadable, or a requested topic is not in it.
-    """
+@contextmanager
+def _open_bag(path: str | Path) -> Iterator[tuple[Path, object]]:
+    """(path, rosbags AnyReader) of a bag; every failure to read it becomes a BagError."""
     from rosbags.highlevel import AnyReader
 
     p = Path(path)
@@ -68,26 +65,37 @@ def read_bag(path: str | Path, topics: Iterable[str] | None = None
         raise BagError(f"{p}: no such bag")
     try:
         with AnyReader([p]) as reader:
-            available = {c.topic for c in reader.connections}
-            wanted = set(available if topics is None else topics)
-            missing = sorted(wanted - available)
-            if missing:
-                raise BagError(f"{p}: topic(s) not in the bag: {', '.join(missing)} "
-                               f"(it has: {', '.join(sorted(available))})")
-            out: dict[str, list[tuple[int, object]]] = {t: [] for t in sorted(wanted)}
-            conns = [c for c in reader.connections if c.topic in wanted]
-            for conn, t_ns, raw in reader.messages(connections=conns):
-                try:
-                    msg = reader.deserialize(raw, conn.msgtype)
-                except Exception as exc:  # rosbags raises several types
-                    raise BagError(f"{p}: cannot decode {conn.topic} [{conn.msgtype}]: "
-                                   f"{_one_line(exc)}") from exc
-                out[conn.topic].append((_stamp(msg, t_ns), msg))
-            return out
+            yield p, reader
     except BagError:
         raise
     except Exception as exc:  # rosbags raises ReaderError, OSError, ...
         raise BagError(f"{p}: not a readable rosbag2 bag ({_one_line(exc)})") from exc
+
+
+def read_bag(path: str | Path, topics: Iterable[str] | None = None
+             ) -> dict[str, list[tuple[int, object]]]:
+    """Messages of a bag per topic, as (stamp ns, deserialized message), in bag order.
+
+    Raises:
+        BagError: the bag is missing or unreadable, or a requested topic is not in it.
+    """
+    with _open_bag(path) as (p, reader):
+        available = {c.topic for c in reader.connections}
+        wanted = set(available if topics is None else topics)
+        missing = sorted(wanted - available)
+        if missing:
+            raise BagError(f"{p}: topic(s) not in the bag: {', '.join(missing)} "
+                           f"(it has: {', '.join(sorted(available))})")
+        out: dict[str, list[tuple[int, object]]] = {t: [] for t in sorted(wanted)}
+        conns = [c for c in reader.connections if c.topic in wanted]
+        for conn, t_ns, raw in reader.messages(connections=conns):
+            try:
+                msg = reader.deserialize(raw, conn.msgtype)
+            except Exception as exc:  # rosbags raises several types
+                raise BagError(f"{p}: cannot decode {conn.topic} [{conn.msgtype}]: "
+                               f"{_one_line(exc)}") from exc
+            out[conn.topic].append((_stamp(msg, t_ns), msg))
+        return out
 
 
 def read_bag_topics(path: str | Path) -> list[str]:
@@ -96,16 +104,8 @@ def read_bag_topics(path: str | Path) -> list[str]:
     Raises:
         BagError: the bag is missing or unreadable.
     """
-    from rosbags.highlevel import AnyReader
-
-    p = Path(path)
-    if not p.exists():
-        raise BagError(f"{p}: no such bag")
-    try:
-        with AnyReader([p]) as reader:
-            return sorted({c.topic for c in reader.connections})
-    except Exception as exc:  # rosbags raises ReaderError, OSError, ...
-        raise BagError(f"{p}: not a readable rosbag2 bag ({_one_line(exc)})") from exc
+    with _open_bag(path) as (_, reader):
+        return sorted({c.topic for c in reader.connections})
 
 
 def flatten(msg: object, prefix: str = "") -> dict[str, float | str]:
