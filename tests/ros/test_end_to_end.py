@@ -281,9 +281,12 @@ def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
     for name, box in odoms.items():
         probe.node.create_subscription(Odometry, f"/{name}/odom", box.append, 10)
     probe.spin_until(lambda: all(len(b) > 20 for b in odoms.values()), 30.0, "three /odom")
-    nodes = {n for n, _ in probe.node.get_node_names_and_namespaces()}
-    assert {"ocean", "boat_dynamics_alpha", "boat_dynamics_bravo",
-            "boat_dynamics_charlie"} <= nodes
+    # The graph (node names) arrives over its own discovery topic, possibly after the data:
+    # wait for it rather than reading one snapshot.
+    expected = {"ocean", "boat_dynamics_alpha", "boat_dynamics_bravo", "boat_dynamics_charlie"}
+    probe.spin_until(
+        lambda: expected <= {n for n, _ in probe.node.get_node_names_and_namespaces()},
+        20.0, f"node names {sorted(expected)}")
     # one clock: the processes' stamps agree within a few steps
     stamps = [time_to_seconds(b[-1].header.stamp) for b in odoms.values()]
     assert max(stamps) - min(stamps) < 0.2
