@@ -23,14 +23,13 @@ Vertex Fragment damping); Archimedes.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.wrench import Wrench, wrench_at
+from boat_dynamics.wrench import Wrench, cross, sum_by_owner
 
-__all__ = ["SamplePointBuoyancy", "sample_point_buoyancy"]
+__all__ = ["SamplePointBuoyancy", "sample_point_buoyancy", "sample_point_wrenches"]
 
 
 @dataclass(frozen=True)
@@ -71,7 +70,7 @@ def sample_point_buoyancy(
     point_velocities: np.ndarray | None = None,
     mass: float = 0.0,
 ) -> Wrench:
-    """Buoyancy wrench of the sample points.
+    """Buoyancy wrench of one boat's sample points (see :func:`sample_point_wrenches`).
 
     Args:
         model: the sample-point parameters.
@@ -88,26 +87,74 @@ def sample_point_buoyancy(
     Returns:
         The buoyancy wrench about the centre of mass, body frame.
     """
-    n = model.points.shape[0]
-    share = water_density * gravity * (model.volume / n)
-    submerged = np.clip(depths, 0.0, model.max_depth)
+    owner = np.zeros(model.points.shape[0], dtype=np.intp)
+    force, torque = sample_point_wrenches(
+        model, owner, 1, depths, rotation[None], np.asarray(center_of_mass)[None],
+        np.array([water_density * gravity]), normals, point_velocities, np.array([mass]))
+    return Wrench(force[0], torque[0])
+
+
+def sample_point_wrenches(
+    model: SamplePointBuoyancy,
+    owner: np.ndarray,
+    count: int,
+    depths: np.ndarray,
+    rotation: np.ndarray,
+    center_of_mass: np.ndarray,
+    rho_g: np.ndarray,
+    normals: np.ndarray | None,
+    point_velocities: np.ndarray | None,
+    mass: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Buoyancy force and torque of the sample points of ``count`` boats, body frames.
+
+    Args:
+        model: the sample-point parameters; ``points`` (P, 3) are the boats' points
+            concatenated, the numeric fields are scalars or (B,) arrays, one per boat.
+        owner: (P,) int, the boat of each point.
+        count: number of boats, B.
+        depths: (P,) m, surface height minus point height (> 0 = submerged).
+        rotation: (B, 3, 3) body-to-world rotations.
+        center_of_mass: (B, 3) m, body frame, relative to the hull reference point.
+        rho_g: (B,) N/m^3, water density times gravity.
+        normals: (P, 3) world surface normals at the points (``direction: normal``).
+        point_velocities: (P, 3) m/s, world velocity of each point relative to the water
+            (``point_damping``).
+        mass: (B,) kg (``point_damping``).
+
+    Returns:
+        (B, 3) N forces and (B, 3) N m torques about the centres of mass, body frames.
+    """
+    points_per_boat = np.bincount(owner, minlength=count)
+    share = (rho_g * model.volume / points_per_boat)[owner]
+    max_depth = _per_point(model.max_depth, owner)
+    submerged = np.clip(depths, 0.0, max_depth)
     if model.curve == "exponential":
-        fraction = (1.0 - np.exp(-model.alpha * submerged / model.max_depth)) / (
-            1.0 - math.exp(-model.alpha))
+        alpha = _per_point(model.alpha, owner)
+        fraction = (1.0 - np.exp(-alpha * submerged / max_depth)) / (1.0 - np.exp(-alpha))
     else:
-        fraction = submerged / model.max_depth
+        fraction = submerged / max_depth
     magnitude = share * fraction
     if model.depth_scale:
         magnitude = magnitude * np.clip(depths, 0.0, 1.0)
     if model.force_clamp is not None:
-        magnitude = np.minimum(magnitude, model.force_clamp * share)
+        magnitude = np.minimum(magnitude, _per_point(model.force_clamp, owner) * share)
     if model.direction == "normal" and normals is not None:
         forces_world = magnitude[:, None] * normals
     else:
-        forces_world = np.outer(magnitude, [0.0, 0.0, 1.0])
-    if model.point_damping > 0.0 and point_velocities is not None:
-        wet = (depths > 0.0)[:, None]
-        forces_world = forces_world - wet * (model.point_damping * mass / n) * point_velocities
-    arms = model.points - center_of_mass
+        forces_world = np.zeros((magnitude.shape[0], 3))
+        forces_world[:, 2] = magnitude
+    if np.any(np.asarray(model.point_damping) > 0.0) and point_velocities is not None:
+        c = _per_point(np.asarray(model.point_damping) * mass / points_per_boat, owner)
+        forces_world = forces_world - ((depths > 0.0) * c)[:, None] * point_velocities
+    arms = model.points - center_of_mass[owner]
     arms[:, 2] += submerged / 2.0
-    return wrench_at(forces_world @ rotation, arms)
+    forces_body = np.einsum("pji,pj->pi", rotation[owner], forces_world)
+    sums = sum_by_owner(np.concatenate([forces_body, cross(arms, forces_body)], axis=1),
+                        owner, count)
+    return sums[:, :3], sums[:, 3:]
+
+
+def _per_point(value, owner: np.ndarray):
+    """A per-boat parameter ((B,) array) per point, or the scalar shared by all."""
+    return np.asarray(value)[owner] if np.ndim(value) else value

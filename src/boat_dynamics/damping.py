@@ -23,14 +23,16 @@ def damping(
     """Damping wrench.
 
     Args:
-        linear: (6,) [surge, sway, heave] N/(m/s) and [roll, pitch, yaw] N m/(rad/s).
-        quadratic: (6,) N/(m/s)^2 and N m/(rad/s)^2.
-        velocity: (3,) m/s, body velocity relative to the water, body frame.
-        angular_velocity: (3,) rad/s, body frame.
+        linear: (..., 6) [surge, sway, heave] N/(m/s) and [roll, pitch, yaw] N m/(rad/s).
+        quadratic: (..., 6) N/(m/s)^2 and N m/(rad/s)^2.
+        velocity: (..., 3) m/s, body velocity relative to the water, body frame.
+        angular_velocity: (..., 3) rad/s, body frame.
+
+    The leading axes (``...``) are boats.
 
     Returns:
-        The damping wrench, body frame, about the centre of mass.
+        The damping wrench, body frame, about the centre of mass, (..., 3) each.
     """
-    force = -(linear[:3] + quadratic[:3] * np.abs(velocity)) * velocity
-    torque = -(linear[3:] + quadratic[3:] * np.abs(angular_velocity)) * angular_velocity
+    force = -(linear[..., :3] + quadratic[..., :3] * np.abs(velocity)) * velocity
+    torque = -(linear[..., 3:] + quadratic[..., 3:] * np.abs(angular_velocity)) * angular_velocity
     return Wrench(force, torque)

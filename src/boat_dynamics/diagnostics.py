@@ -9,12 +9,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.boat import BoatParams, BoatState, reference_pose
-from boat_dynamics.mesh_buoyancy import MeshBuoyancy, hydrostatics
+from boat_dynamics.fleet import Fleet, FleetState, group_depths
+from boat_dynamics.mesh_buoyancy import MeshBuoyancy, clip_hulls, hydrostatics_of
+from boat_dynamics.model import BoatParams, BoatState
 from boat_dynamics.rigid_body import rotation_matrix
-from ocean_sim.waves import WaveField, sample_surface
+from ocean_sim.waves import WaveField
 
-__all__ = ["BoatReport", "active_remedies", "boat_report"]
+__all__ = ["BoatReport", "active_remedies", "boat_report", "fleet_reports"]
 
 
 @dataclass(frozen=True)
@@ -55,31 +56,55 @@ def active_remedies(params: BoatParams, substeps: int) -> list[str]:
 def boat_report(params: BoatParams, state: BoatState, sea: WaveField,
                 substeps: int = 1) -> BoatReport:
     """Draft, submerged volume, waterplane area, GM, mode and remedies of a boat now."""
+    return fleet_reports(Fleet([params]), FleetState.stack([state]), sea, substeps)[0]
+
+
+def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField,
+                  substeps: int = 1) -> list[BoatReport]:
+    """:func:`boat_report` of every boat of a fleet, with one surface query and one clip."""
     rot = rotation_matrix(state.orientation)
-    ref, _ = reference_pose(params, state)
-    model = params.buoyancy
-    body_points = model.mesh.vertices if isinstance(model, MeshBuoyancy) else model.points
-    pts = ref + body_points @ rot.T
-    depths = sample_surface(sea, pts[:, :2], state.t,
-                            min_wavelength=params.min_wavelength).heights - pts[:, 2]
-    values = [("buoyancy_model", "mesh" if isinstance(model, MeshBuoyancy) else "sample_points"),
-              ("control_mode", params.control.mode)]
-    hull_volume = model.mesh.volume if isinstance(model, MeshBuoyancy) else model.volume
-    if isinstance(model, MeshBuoyancy):
-        hs = hydrostatics(model, pts, depths, rot, state.position)
-        volume = hs.submerged_volume
-        values += [("draft_m", f"{hs.draft:.4f}"), ("submerged_volume_m3", f"{volume:.4f}"),
-                   ("waterplane_area_m2", f"{hs.waterplane_area:.4f}"),
-                   ("metacentric_height_m", f"{hs.metacentric_height:.4f}")]
-    else:
-        fraction = np.clip(depths, 0.0, model.max_depth) / model.max_depth
-        volume = float(fraction.mean() * model.volume)
-        values += [("draft_m", f"{max(float(depths.max()), 0.0):.4f}"),
-                   ("submerged_volume_m3", f"{volume:.4f}")]
-    values.append(("remedies", "; ".join(active_remedies(params, substeps))))
-    ratio = volume / hull_volume
-    if ratio >= 0.999:
-        return BoatReport(1, "fully submerged", tuple(values))
-    if ratio <= 0.0:
-        return BoatReport(1, "out of the water", tuple(values))
-    return BoatReport(0, f"floating, {100 * ratio:.0f} % submerged", tuple(values))
+    volumes = np.zeros(fleet.count)
+    values: list[list] = [[] for _ in range(fleet.count)]
+    for g, world, depths in group_depths(fleet, state, sea):
+        i = g.index
+        count = i.shape[0]
+        draft = np.full(count, -np.inf)
+        np.maximum.at(draft, g.owner, depths)
+        if g.mesh is not None:
+            normals = np.einsum("fij,fj->fi", rot[i][g.face_owner], g.face_normals)
+            wet = clip_hulls(g.faces, normals, world, depths)
+            reports = hydrostatics_of(wet, g.face_owner[wet.faces], count, rot[i],
+                                      state.position[i], draft)
+            for k, hs in zip(i, reports, strict=True):
+                volumes[k] = hs.submerged_volume
+                values[k] = [("buoyancy_model", "mesh"),
+                             ("draft_m", f"{hs.draft:.4f}"),
+                             ("submerged_volume_m3", f"{hs.submerged_volume:.4f}"),
+                             ("waterplane_area_m2", f"{hs.waterplane_area:.4f}"),
+                             ("metacentric_height_m", f"{hs.metacentric_height:.4f}")]
+            continue
+        model = g.points  # numeric fields stacked: (G,) per boat of the group
+        max_depth = model.max_depth[g.owner]
+        fraction = np.clip(depths, 0.0, max_depth) / max_depth
+        mean = (np.bincount(g.owner, weights=fraction, minlength=count)
+                / np.bincount(g.owner, minlength=count))
+        for j, k in enumerate(i):
+            volumes[k] = float(mean[j] * model.volume[j])
+            values[k] = [("buoyancy_model", "sample_points"),
+                         ("draft_m", f"{max(float(draft[j]), 0.0):.4f}"),
+                         ("submerged_volume_m3", f"{volumes[k]:.4f}")]
+    out = []
+    for k, params in enumerate(fleet.params):
+        model = params.buoyancy
+        hull_volume = model.mesh.volume if isinstance(model, MeshBuoyancy) else model.volume
+        entries = [values[k][0], ("control_mode", params.control.mode), *values[k][1:],
+                   ("remedies", "; ".join(active_remedies(params, substeps)))]
+        ratio = volumes[k] / hull_volume
+        if ratio >= 0.999:
+            out.append(BoatReport(1, "fully submerged", tuple(entries)))
+        elif ratio <= 0.0:
+            out.append(BoatReport(1, "out of the water", tuple(entries)))
+        else:
+            out.append(BoatReport(0, f"floating, {100 * ratio:.0f} % submerged",
+                                  tuple(entries)))
+    return out

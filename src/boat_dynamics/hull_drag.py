@@ -17,12 +17,15 @@ Source: Kerner, "Water interaction model for boats in video games", part 2 (Game
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from boat_dynamics.wrench import Wrench, cross
+from boat_dynamics.wrench import cross, sum_by_owner
+
+if TYPE_CHECKING:
+    from boat_dynamics.mesh_buoyancy import SubmergedTriangles
 
 __all__ = ["HullDrag", "friction_coefficient", "hull_drag"]
 
@@ -58,53 +61,65 @@ class HullDrag:
     suction_falloff: float = 0.5
 
 
-def friction_coefficient(speed: float, length: float, kinematic_viscosity: float) -> float:
-    """ITTC 1957 friction coefficient C_F = 0.075 / (log10(U L / nu) - 2)^2 (0 at rest)."""
-    rn = speed * length / kinematic_viscosity
-    if rn <= 1e3:  # the correlation line holds for turbulent flow only; no speed, no friction
-        return 0.0
-    return 0.075 / (math.log10(rn) - 2.0) ** 2
+def friction_coefficient(speed, length, kinematic_viscosity):
+    """ITTC 1957 friction coefficient C_F = 0.075 / (log10(U L / nu) - 2)^2 (0 at rest).
+
+    Scalars or (B,) arrays. The correlation line holds for turbulent flow only: below
+    Rn = 1e3 (no speed) there is no friction.
+    """
+    rn = np.asarray(speed * length / kinematic_viscosity, dtype=float)
+    cf = np.where(rn > 1e3, 0.075 / (np.log10(np.maximum(rn, 1e3)) - 2.0) ** 2, 0.0)
+    return float(cf) if cf.ndim == 0 else cf
 
 
-def hull_drag(model: HullDrag, corners: np.ndarray, normals: np.ndarray, areas: np.ndarray,
-              velocities: np.ndarray, speed: float, length: float, water_density: float,
-              center_of_mass_world: np.ndarray, rotation: np.ndarray) -> Wrench:
-    """Drag wrench of the submerged triangles about the centre of mass, body frame.
+def _per(value, owner: np.ndarray):
+    """A per-hull parameter ((B,) array) per triangle, or the scalar shared by all."""
+    return np.asarray(value)[owner] if np.ndim(value) else value
+
+
+def hull_drag(model: HullDrag, wet: SubmergedTriangles, owner: np.ndarray, count: int,
+              velocities: np.ndarray, speed: np.ndarray, length: np.ndarray,
+              water_density: np.ndarray, center_of_mass_world: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """Drag force and torque on each of ``count`` hulls, about its centre of mass, world frame.
 
     Args:
-        model: the drag options.
-        corners: (T, 3, 3) m, submerged triangles, world frame.
-        normals: (T, 3) outward unit normals, world frame.
-        areas: (T,) m^2.
+        model: the drag options (numeric fields scalar, or (B,) one per hull).
+        wet: the submerged triangles of the hulls.
+        owner: (T,) int, the hull of each triangle.
+        count: number of hulls, B.
         velocities: (T, 3) m/s, velocity of each triangle's centroid relative to the water.
-        speed: m/s, hull speed through the water (for the Reynolds number).
-        length: m, hull length (for the Reynolds number).
-        water_density: rho, kg/m^3.
-        center_of_mass_world: (3,) m.
-        rotation: (3, 3) body-to-world rotation.
+        speed: (B,) m/s, hull speed through the water (for the Reynolds number).
+        length: (B,) m, hull length (for the Reynolds number).
+        water_density: (B,) rho, kg/m^3.
+        center_of_mass_world: (B, 3) m.
+
+    Returns:
+        (B, 3) N forces and (B, 3) N m torques, world frame.
     """
-    force = np.zeros((corners.shape[0], 3))
-    if corners.shape[0] and model.viscous:
+    normals, areas = wet.normals, wet.areas
+    force = np.zeros((areas.shape[0], 3))
+    if model.viscous:
         cf = friction_coefficient(speed, length, model.kinematic_viscosity)
+        coefficient = (0.5 * np.asarray(water_density) * cf
+                       * (1.0 + np.asarray(model.form_factor)))
         vn = np.einsum("ij,ij->i", velocities, normals)
         vt = velocities - vn[:, None] * normals
-        mag = np.linalg.norm(vt, axis=1)
-        force -= (0.5 * water_density * cf * (1.0 + model.form_factor)
-                  * (areas * mag)[:, None] * vt)
-    if corners.shape[0] and model.pressure:
-        v = np.linalg.norm(velocities, axis=1)
+        mag = np.sqrt(np.einsum("ij,ij->i", vt, vt))
+        force -= (_per(coefficient, owner) * areas * mag)[:, None] * vt
+    if model.pressure:
+        v = np.sqrt(np.einsum("ij,ij->i", velocities, velocities))
         moving = v > 1e-9
         cos = np.where(moving, np.einsum("ij,ij->i", velocities, normals)
                        / np.where(moving, v, 1.0), 0.0)
-        r = v / model.reference_speed
-        push = (model.pressure_linear * r + model.pressure_quadratic * r * r) * np.power(
-            np.clip(cos, 0.0, 1.0), model.pressure_falloff)
-        pull = (model.suction_linear * r + model.suction_quadratic * r * r) * np.power(
-            np.clip(-cos, 0.0, 1.0), model.suction_falloff)
+        r = v / _per(model.reference_speed, owner)
+        push = ((_per(model.pressure_linear, owner) * r
+                 + _per(model.pressure_quadratic, owner) * r * r)
+                * np.power(np.clip(cos, 0.0, 1.0), _per(model.pressure_falloff, owner)))
+        pull = ((_per(model.suction_linear, owner) * r
+                 + _per(model.suction_quadratic, owner) * r * r)
+                * np.power(np.clip(-cos, 0.0, 1.0), _per(model.suction_falloff, owner)))
         force += ((pull * (cos < 0) - push * (cos > 0)) * areas)[:, None] * normals
-    if not corners.shape[0]:
-        return Wrench(np.zeros(3), np.zeros(3))
-    arms = corners.mean(axis=1) - center_of_mass_world
-    total = force.sum(axis=0)
-    torque = cross(arms, force).sum(axis=0)
-    return Wrench(rotation.T @ total, rotation.T @ torque)
+    arms = wet.corners.mean(axis=1) - center_of_mass_world[owner]
+    sums = sum_by_owner(np.concatenate([force, cross(arms, force)], axis=1), owner, count)
+    return sums[:, :3], sums[:, 3:]

@@ -8,18 +8,18 @@ v_x <- sign(v_x) sqrt(v_x^2 + v_y^2 - v_y'^2). Source: the seed notes, "Lateral 
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 __all__ = ["reflect_off_keel"]
 
 
-def reflect_off_keel(velocity: np.ndarray, rate: float, dt: float) -> np.ndarray:
-    """Body velocity (3,) m/s after dt s of keel reflection at ``rate`` (1/s)."""
-    if rate <= 0.0:
+def reflect_off_keel(velocity: np.ndarray, rate, dt: float) -> np.ndarray:
+    """Body velocity (..., 3) m/s after dt s of keel reflection at ``rate`` (1/s, or (B,))."""
+    rate = np.asarray(rate, dtype=float)
+    if not np.any(rate > 0.0):
         return velocity
-    vx, vy, vz = velocity
-    vy_new = vy * math.exp(-rate * dt)
-    vx_new = math.copysign(math.sqrt(vx * vx + vy * vy - vy_new * vy_new), vx if vx else 1.0)
-    return np.array([vx_new, vy_new, vz])
+    vx, vy, vz = velocity[..., 0], velocity[..., 1], velocity[..., 2]
+    vy_new = vy * np.exp(-np.maximum(rate, 0.0) * dt)
+    speed = np.sqrt(np.maximum(vx * vx + vy * vy - vy_new * vy_new, 0.0))
+    vx_new = np.where(vx < 0.0, -speed, speed)  # sign(vx), + when vx == 0
+    return np.stack([vx_new, vy_new, vz], axis=-1)

@@ -25,15 +25,19 @@ import numpy as np
 
 from boat_dynamics.hull import HullMesh
 from boat_dynamics.hull_drag import HullDrag
-from boat_dynamics.wrench import Wrench, cross
+from boat_dynamics.wrench import Wrench, cross, sum_by_owner
 
 __all__ = [
     "Hydrostatics",
     "MeshBuoyancy",
     "SubmergedTriangles",
+    "clip_hulls",
     "clip_submerged",
+    "clip_submerged_indexed",
     "hydrostatics",
+    "hydrostatics_of",
     "mesh_buoyancy",
+    "pressure_wrenches",
     "submerged_triangles",
 ]
 
@@ -65,10 +69,17 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
         triangles; winding is preserved. A triangle with one vertex under water gives one
         triangle, with two a quadrilateral split in two.
     """
+    return clip_submerged_indexed(corners, depths, normals)[:3]
+
+
+def clip_submerged_indexed(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
+                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`clip_submerged`, plus (T,) the index of the input triangle each part comes from."""
     wet = depths > 0.0
     count = wet.sum(axis=1)
-    out_p, out_d, out_n = [corners[count == 3]], [depths[count == 3]], [normals[count == 3]]
     rows = np.arange(corners.shape[0])
+    full = rows[count == 3]
+    out_p, out_d, out_n, out_s = [corners[full]], [depths[full]], [normals[full]], [full]
 
     def edge_point(p_from, d_from, p_to, d_to):
         t = d_from / (d_from - d_to)
@@ -81,9 +92,11 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
         pa, pb, pc = corners[one, a], corners[one, b], corners[one, c]
         da, db, dc = depths[one, a], depths[one, b], depths[one, c]
         ab, ac = edge_point(pa, da, pb, db), edge_point(pa, da, pc, dc)
+        zero = np.zeros_like(da)
         out_p.append(np.stack([pa, ab, ac], axis=1))
-        out_d.append(np.stack([da, np.zeros_like(da), np.zeros_like(da)], axis=1))
+        out_d.append(np.stack([da, zero, zero], axis=1))
         out_n.append(normals[one])
+        out_s.append(one)
     two = rows[count == 2]
     if two.size:
         c = np.argmin(wet[two], axis=1)  # the dry vertex; a, b keep the winding
@@ -95,39 +108,86 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
         out_p += [np.stack([pa, pb, bc], axis=1), np.stack([pa, bc, ca], axis=1)]
         out_d += [np.stack([da, db, zero], axis=1), np.stack([da, zero, zero], axis=1)]
         out_n += [normals[two], normals[two]]
-    return np.concatenate(out_p), np.concatenate(out_d), np.concatenate(out_n)
+        out_s += [two, two]
+    if len(out_p) == 1:
+        return out_p[0], out_d[0], out_n[0], out_s[0]
+    return (np.concatenate(out_p), np.concatenate(out_d), np.concatenate(out_n),
+            np.concatenate(out_s))
 
 
 @dataclass(frozen=True)
 class SubmergedTriangles:
-    """The wetted part of a hull, world frame.
+    """The wetted part of one or several hulls, world frame.
 
     Attributes:
         corners: (T, 3, 3) m.
         depths: (T, 3) m below the surface at each corner.
         normals: (T, 3) outward unit normals.
         areas: (T,) m^2.
+        faces: (T,) int, the hull face each part comes from.
     """
 
     corners: np.ndarray
     depths: np.ndarray
     normals: np.ndarray
     areas: np.ndarray
+    faces: np.ndarray
 
     def __iter__(self):
         return iter((self.corners, self.depths, self.normals, self.areas))
 
 
+def clip_hulls(faces: np.ndarray, normals_world: np.ndarray, vertices_world: np.ndarray,
+               vertex_depths: np.ndarray) -> SubmergedTriangles:
+    """Clip hulls at the surface sampled at their vertices (see :func:`clip_submerged`).
+
+    Args:
+        faces: (F, 3) int, vertex indices of each triangle (several hulls may be concatenated).
+        normals_world: (F, 3) outward unit normals, world frame.
+        vertices_world: (V, 3) m.
+        vertex_depths: (V,) m, surface height minus vertex height.
+    """
+    p, d, n, source = clip_submerged_indexed(vertices_world[faces], vertex_depths[faces],
+                                             normals_world)
+    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    c = cross(e1, e2)
+    area = 0.5 * np.sqrt(np.einsum("ij,ij->i", c, c))
+    return SubmergedTriangles(p, d, n, area, source)
+
+
 def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
                         vertex_depths: np.ndarray, rotation: np.ndarray) -> SubmergedTriangles:
-    """Clip the hull at the surface sampled at its vertices (see :func:`clip_submerged`)."""
-    faces = model.mesh.faces
-    corners = vertices_world[faces]
-    normals = model.mesh.face_normals @ rotation.T
-    p, d, n = clip_submerged(corners, vertex_depths[faces], normals)
-    area = 0.5 * np.linalg.norm(cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
-    return SubmergedTriangles(p, d, n, area)
+    """Clip one hull at the surface sampled at its vertices (see :func:`clip_submerged`)."""
+    return clip_hulls(model.mesh.faces, model.mesh.face_normals @ rotation.T, vertices_world,
+                      vertex_depths)
 
+
+def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
+                      center_of_mass_world: np.ndarray, rho_g: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """Hydrostatic pressure force and torque on each hull, world frame.
+
+    Args:
+        wet: the submerged triangles of ``count`` hulls.
+        owner: (T,) int, the hull of each triangle.
+        count: number of hulls, B.
+        center_of_mass_world: (B, 3) m, the torque reference of each hull.
+        rho_g: (B,) N/m^3, water density times gravity for each hull.
+
+    Returns:
+        (B, 3) N forces and (B, 3) N m torques about the centres of mass, world frame.
+    """
+    p, d, n, area = wet
+    dsum = d.sum(axis=1)
+    integral_d = area * dsum / 3.0  # integral of d dA, m^3
+    rel = p - center_of_mass_world[owner][:, None, :]
+    moment = (area / 12.0)[:, None] * (rel.sum(axis=1) * dsum[:, None]
+                                        + np.einsum("tj,tjk->tk", d, rel))
+    pressure_n = -rho_g[owner][:, None] * n
+    per_triangle = np.concatenate([integral_d[:, None] * pressure_n,
+                                   cross(moment, pressure_n)], axis=1)
+    sums = sum_by_owner(per_triangle, owner, count)
+    return sums[:, :3], sums[:, 3:]
 
 
 def mesh_buoyancy(
@@ -140,7 +200,7 @@ def mesh_buoyancy(
     gravity: float,
     wet: SubmergedTriangles | None = None,
 ) -> Wrench:
-    """Hydrostatic pressure wrench on the submerged hull.
+    """Hydrostatic pressure wrench on one submerged hull (see :func:`pressure_wrenches`).
 
     Args:
         model: the mesh model.
@@ -157,18 +217,10 @@ def mesh_buoyancy(
     """
     if wet is None:
         wet = submerged_triangles(model, vertices_world, vertex_depths, rotation)
-    p, d, n, area = wet
-    if p.shape[0] == 0:
-        return Wrench(np.zeros(3), np.zeros(3))
-    dsum = d.sum(axis=1)
-    integral_d = area * dsum / 3.0  # integral of d dA, m^3
-    rel = p - center_of_mass_world
-    moment = (area / 12.0)[:, None] * (rel.sum(axis=1) * dsum[:, None]
-                                        + np.einsum("tj,tjk->tk", d, rel))
-    forces = -water_density * gravity * integral_d[:, None] * n
-    force = forces.sum(axis=0)
-    torque = cross(moment, -water_density * gravity * n).sum(axis=0)
-    return Wrench(rotation.T @ force, rotation.T @ torque)
+    force, torque = pressure_wrenches(wet, np.zeros(wet.areas.shape[0], dtype=np.intp), 1,
+                                      np.asarray(center_of_mass_world)[None, :],
+                                      np.array([water_density * gravity]))
+    return Wrench(rotation.T @ force[0], rotation.T @ torque[0])
 
 
 @dataclass(frozen=True)
@@ -192,7 +244,20 @@ class Hydrostatics:
 
 def hydrostatics(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths: np.ndarray,
                  rotation: np.ndarray, center_of_mass_world: np.ndarray) -> Hydrostatics:
-    """Submerged volume, centre of buoyancy, waterplane area and GM of the hull.
+    """Submerged volume, centre of buoyancy, waterplane area and GM of one hull.
+
+    See :func:`hydrostatics_of` for the method.
+    """
+    wet = submerged_triangles(model, vertices_world, vertex_depths, rotation)
+    return hydrostatics_of(wet, np.zeros(wet.areas.shape[0], dtype=np.intp), 1,
+                           rotation[None], np.asarray(center_of_mass_world)[None],
+                           np.array([vertex_depths.max()]))[0]
+
+
+def hydrostatics_of(wet: SubmergedTriangles, owner: np.ndarray, count: int,
+                    rotation: np.ndarray, center_of_mass_world: np.ndarray,
+                    draft: np.ndarray) -> list[Hydrostatics]:
+    """Submerged volume, centre of buoyancy, waterplane area and GM of ``count`` hulls.
 
     Volume integrals become integrals over the submerged surface by the divergence theorem
     with fields that vanish on the waterplane (d = 0 there): V = -integral(d n_z dA),
@@ -201,10 +266,16 @@ def hydrostatics(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths:
     BM = I_wp / V with I_wp the waterplane's second moment about its centroid line along the
     body x axis. Source: Biran & Lopez-Pulido, "Ship Hydrostatics and Stability" (2014),
     ch. 2-3.
+
+    Args:
+        wet: the submerged triangles of the hulls.
+        owner: (T,) int, the hull of each triangle.
+        count: number of hulls, B.
+        rotation: (B, 3, 3) body-to-world rotations.
+        center_of_mass_world: (B, 3) m.
+        draft: (B,) m, depth of each hull's lowest vertex below its surface.
     """
-    p, d, n, area = submerged_triangles(model, vertices_world, vertex_depths, rotation)
-    if p.shape[0] == 0:
-        return Hydrostatics(0.0, center_of_mass_world.copy(), 0.0, 0.0, 0.0)
+    p, d, n, area = wet
     nz = n[:, 2]
 
     def integral(f, g=None):
@@ -213,18 +284,27 @@ def hydrostatics(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths:
             return area * f.sum(axis=1) / 3.0
         return area / 12.0 * (f.sum(axis=1) * g.sum(axis=1) + (f * g).sum(axis=1))
 
-    volume = -np.sum(integral(d) * nz)
+    # waterplane moments, in coordinates across each body x axis (transverse)
+    axis = rotation[:, :, 0].copy()
+    axis[:, 2] = 0.0
+    axis /= np.maximum(np.linalg.norm(axis, axis=1), 1e-12)[:, None]
+    across = np.stack([-axis[:, 1], axis[:, 0], np.zeros(count)], axis=1)
+    s = np.einsum("tjk,tk->tj", p, across[owner])  # transverse coordinate of each corner
     x, y, z = p[:, :, 0], p[:, :, 1], p[:, :, 2]
-    cb = np.array([-np.sum(integral(x, d) * nz), -np.sum(integral(y, d) * nz),
-                   -np.sum((integral(z, d) + 0.5 * integral(d, d)) * nz)]) / volume
-    # waterplane moments, in coordinates across the body x axis (transverse)
-    axis = rotation[:, 0].copy()
-    axis[2] = 0.0
-    axis /= max(np.linalg.norm(axis), 1e-12)
-    across = np.array([-axis[1], axis[0], 0.0])
-    s = p @ across  # transverse coordinate of each corner
-    a_wp = -np.sum(area * nz)
-    s_mean = -np.sum(integral(s) * nz) / a_wp
-    i_wp = -np.sum(integral(s, s) * nz) - a_wp * s_mean**2
-    gm = (cb[2] + i_wp / volume) - center_of_mass_world[2]
-    return Hydrostatics(float(volume), cb, float(a_wp), float(gm), float(vertex_depths.max()))
+    columns = np.stack([integral(d), integral(x, d), integral(y, d),
+                        integral(z, d) + 0.5 * integral(d, d), area, integral(s),
+                        integral(s, s)], axis=1)
+    sums = sum_by_owner(-columns * nz[:, None], owner, count)
+    out = []
+    for b in range(count):
+        volume, mx, my, mz, a_wp, s_first, s_second = sums[b].tolist()
+        com = center_of_mass_world[b]
+        if volume <= 0.0:
+            out.append(Hydrostatics(0.0, com.copy(), 0.0, 0.0, 0.0))
+            continue
+        cb = np.array([mx, my, mz]) / volume
+        s_mean = s_first / a_wp if a_wp > 0.0 else 0.0
+        i_wp = s_second - a_wp * s_mean**2
+        gm = (cb[2] + i_wp / volume) - com[2]
+        out.append(Hydrostatics(volume, cb, a_wp, gm, float(draft[b])))
+    return out

@@ -21,29 +21,31 @@ from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64, Float64MultiArray
 
-from boat_dynamics.boat import (
-    BoatInputs,
-    BoatState,
-    Forces,
-    evaluate_forces,
-    reference_pose,
-    step_many,
-)
+from boat_dynamics.boat import BoatState, reference_pose
 from boat_dynamics.commands import check_command
 from boat_dynamics.control import CONTROL_MODES
-from boat_dynamics.diagnostics import boat_report
+from boat_dynamics.diagnostics import fleet_reports
+from boat_dynamics.fleet import (
+    Fleet,
+    FleetForces,
+    FleetInputs,
+    FleetState,
+    fleet_forces,
+    fleet_step,
+)
+from boat_dynamics.rigid_body import rotation_matrix
 from boat_dynamics.scenario import BoatSpec, Scenario
 from boat_dynamics.wrench import cross
 from boat_msgs_py import names
-from boat_msgs_py.convert import (
-    diagnostic_array,
-    odometry,
-    pose_stamped,
-    seconds_to_time,
-    twist_stamped,
-    wave_field_from_msg,
-    wrench_stamped,
+from boat_msgs_py.cdr import (
+    clock_template,
+    odometry_template,
+    pose_template,
+    stamp_parts,
+    twist_template,
+    wrench_template,
 )
+from boat_msgs_py.convert import diagnostic_array, seconds_to_time, wave_field_from_msg
 from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, DIAGNOSTICS_QOS, STATE_QOS, WAVE_FIELD_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 from ocean_sim.waves import InvalidSeaStateError, WaveField
@@ -78,13 +80,13 @@ class SimClock:
 @dataclass
 class _Boat:
     spec: BoatSpec
-    state: BoatState
+    index: int  # in the fleet
     throttle: float = 0.0
     rudder: float = 0.0
     last_thrust_t: float = -math.inf
     timed_out: bool = True
-    forces: Forces | None = None  # acting during the last step
     pubs: dict[str, TappedPublisher] = field(default_factory=dict)
+    templates: dict = field(default_factory=dict)  # CdrTemplate per published topic
     subs: list = field(default_factory=list)
 
 
@@ -133,7 +135,11 @@ class DynamicsNode(Node):
                                          DIAGNOSTICS_QOS, tap)
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
-        self.boats = [self._make_boat(spec) for spec in scenario.boats]
+        self._fleet = Fleet([spec.params for spec in scenario.boats])
+        self._state = FleetState.stack([spec.initial for spec in scenario.boats])
+        self._forces: FleetForces | None = None  # acting during the last step
+        self._clock_template = clock_template()
+        self.boats = [self._make_boat(spec, i) for i, spec in enumerate(scenario.boats)]
         self.commands_received = 0
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
@@ -151,8 +157,9 @@ class DynamicsNode(Node):
 
     # ------------------------------------------------------------------ set-up
 
-    def _make_boat(self, spec: BoatSpec) -> _Boat:
-        boat = _Boat(spec=spec, state=spec.initial)
+    def _make_boat(self, spec: BoatSpec, index: int) -> _Boat:
+        boat = _Boat(spec=spec, index=index)
+        child = names.child_frame(spec.name)
         for key, cls, topic, qos in (
             ("odom", Odometry, names.ODOM, STATE_QOS),
             ("pose", PoseStamped, names.POSE, STATE_QOS),
@@ -160,6 +167,9 @@ class DynamicsNode(Node):
         ):
             boat.pubs[key] = TappedPublisher(self, cls, names.boat_topic(spec.name, topic), qos,
                                              self._tap)
+        boat.templates = {"odom": odometry_template(names.WORLD_FRAME, child),
+                          "pose": pose_template(names.WORLD_FRAME),
+                          "twist": twist_template(child), "wrench": wrench_template(child)}
         for source in names.WRENCH_SOURCES:
             boat.pubs[source] = TappedPublisher(
                 self, WrenchStamped, names.wrench_topic(spec.name, source), DIAGNOSTICS_QOS,
@@ -182,7 +192,7 @@ class DynamicsNode(Node):
                 COMMAND_QOS))
             if self._tap is not None:  # recorded here, at the simulation time they arrive
                 self._tap.topics.update({thrust_topic, rudder_topic})
-        pos, _ = reference_pose(spec.params, boat.state)
+        pos, _ = reference_pose(spec.params, spec.initial)
         self.get_logger().info(
             f"boat {label}: mass {spec.params.mass:g} kg, start at "
             f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m; publishing "
@@ -191,7 +201,16 @@ class DynamicsNode(Node):
 
     def boat_positions(self) -> np.ndarray:
         """(K, 2) m, world x, y of every boat's hull reference point."""
-        return np.array([reference_pose(b.spec.params, b.state)[0][:2] for b in self.boats])
+        return self._reference_points()[:, :2]
+
+    def state_of(self, boat: _Boat) -> BoatState:
+        """One boat's current state."""
+        return self._state.boat(boat.index)
+
+    def _reference_points(self) -> np.ndarray:
+        """(K, 3) m, world positions of the boats' hull reference points."""
+        rot = rotation_matrix(self._state.orientation)
+        return self._state.position - np.einsum("bij,bj->bi", rot, self._fleet.center_of_mass)
 
     # ------------------------------------------------------------------ callbacks
 
@@ -209,7 +228,10 @@ class DynamicsNode(Node):
             spec = boat.spec
             control = replace(spec.params.control, mode=p.value)
             boat.spec = replace(spec, params=replace(spec.params, control=control))
-            boat.state = replace(boat.state, control_weight=0.0)
+            weights = self._state.control_weight.copy()
+            weights[boat.index] = 0.0
+            self._state = replace(self._state, control_weight=weights)
+            self._fleet = Fleet([b.spec.params for b in self.boats])
             self.get_logger().info(f"{p.name}: now {p.value} (taking over in "
                                    f"{control.transition:g} s)")
         return SetParametersResult(successful=True)
@@ -270,11 +292,11 @@ class DynamicsNode(Node):
 
     # ------------------------------------------------------------------ stepping
 
-    def _inputs(self, boat: _Boat) -> BoatInputs:
+    def _inputs(self, boat: _Boat) -> tuple[float, float]:
+        """(throttle, rudder rad) for the next step: scripted, or the last valid commands."""
         t = self._sim_clock.t
         if boat.spec.commands is not None:
-            throttle, rudder = boat.spec.commands.at(t)
-            return BoatInputs(throttle, rudder)
+            return boat.spec.commands.at(t)
         timeout = self.get_parameter("cmd_timeout").value
         if not boat.timed_out and t - boat.last_thrust_t > timeout:
             boat.timed_out = True
@@ -283,7 +305,7 @@ class DynamicsNode(Node):
                     f"{names.boat_topic(boat.spec.name, names.CMD_THRUST)}: no command for "
                     f"{timeout:g} s; thrust set to 0")
             boat.throttle = 0.0
-        return BoatInputs(boat.throttle, boat.rudder)
+        return boat.throttle, boat.rudder
 
     @staticmethod
     def _due(k: int, rate: float, out_rate: float) -> bool:
@@ -294,52 +316,61 @@ class DynamicsNode(Node):
         """Take one physics step for every boat, then publish what is due."""
         if self.sea is None:
             raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
-        params = [b.spec.params for b in self.boats]
-        inputs = [self._inputs(b) for b in self.boats]
+        commands = np.array([self._inputs(b) for b in self.boats], dtype=float).reshape(-1, 2)
+        inputs = FleetInputs(commands[:, 0], commands[:, 1])
         for _ in range(self._substeps):
-            results = step_many(params, [b.state for b in self.boats], inputs, self.sea,
-                                self._dt)
-            for boat, (state, forces) in zip(self.boats, results, strict=True):
-                boat.state, boat.forces = state, forces
+            self._state, self._forces = fleet_step(self._fleet, self._state, inputs, self.sea,
+                                                   self._dt)
         self._sim_clock.steps += 1
         self.publish_outputs()
 
     def publish_outputs(self) -> None:
         """Publish /clock, odometry and wrenches that are due at the current step."""
         k = self._sim_clock.steps
-        stamp = seconds_to_time(self._sim_clock.epoch + self._sim_clock.t)
+        sec, nanosec = stamp_parts(self._sim_clock.epoch + self._sim_clock.t)
         if self._clock_pub is not None:
-            self._clock_pub.publish(Clock(clock=stamp))
-        state_due = self._due(k, self._rate, self._publish_rate)
-        diag_due = self._due(k, self._rate, self._diag_rate)
-        for boat in self.boats:
-            if state_due:
-                self._publish_state(boat, stamp)
-            if diag_due:
-                self._publish_wrenches(boat, stamp)
-        if diag_due:
-            statuses = []
-            for boat in self.boats:
-                r = boat_report(boat.spec.params, boat.state, self.sea, self._substeps)
-                statuses.append((f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message,
-                                 r.values))
-            self._diag_pub.publish(diagnostic_array(stamp, statuses))
+            self._clock_pub.publish(self._clock_template.pack(sec, nanosec))
+        if self._due(k, self._rate, self._publish_rate):
+            self._publish_states(sec, nanosec)
+        if self._due(k, self._rate, self._diag_rate):
+            self._publish_wrenches(sec, nanosec)
+            self._publish_diagnostics(seconds_to_time(self._sim_clock.epoch
+                                                      + self._sim_clock.t))
 
-    def _publish_state(self, boat: _Boat, stamp) -> None:
-        params, state = boat.spec.params, boat.state
-        pos, q = reference_pose(params, state)
+    def _publish_states(self, sec: int, nanosec: int) -> None:
+        """odom, pose and twist of every boat: the hull reference point's pose and twist."""
+        state = self._state
+        pos = self._reference_points().tolist()
+        quat = state.orientation.tolist()
         # velocity of the reference point: v_com + w x (r_ref - r_com), body frame
-        v_ref = state.velocity - cross(state.angular_velocity, params.center_of_mass)
-        odom = odometry(stamp, names.child_frame(boat.spec.name), pos, q, v_ref,
-                        state.angular_velocity)
-        boat.pubs["odom"].publish(odom)
-        boat.pubs["pose"].publish(pose_stamped(odom))
-        boat.pubs["twist"].publish(twist_stamped(odom))
+        v_ref = (state.velocity - cross(state.angular_velocity, self._fleet.center_of_mass)
+                 ).tolist()
+        omega = state.angular_velocity.tolist()
+        for boat in self.boats:
+            i, t = boat.index, boat.templates
+            boat.pubs["odom"].publish(t["odom"].pack(sec, nanosec, *pos[i], *quat[i], *v_ref[i],
+                                                     *omega[i]))
+            boat.pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
+            boat.pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
 
-    def _publish_wrenches(self, boat: _Boat, stamp) -> None:
-        forces: Forces = boat.forces or evaluate_forces(boat.spec.params, boat.state,
-                                                        self._inputs(boat), self.sea)
-        frame = names.child_frame(boat.spec.name)
-        for source in names.WRENCH_SOURCES:
-            w = getattr(forces, source)
-            boat.pubs[source].publish(wrench_stamped(stamp, frame, w.force, w.torque))
+    def _publish_wrenches(self, sec: int, nanosec: int) -> None:
+        """wrench/<source> of every boat: the forces that acted during the last step."""
+        forces = self._forces
+        if forces is None:  # before the first step: the forces at the initial state
+            commands = np.array([self._inputs(b) for b in self.boats], dtype=float)
+            forces, _ = fleet_forces(self._fleet, self._state,
+                                     FleetInputs(commands[:, 0], commands[:, 1]), self.sea)
+        rows = {source: np.concatenate([getattr(forces, source).force,
+                                        getattr(forces, source).torque], axis=1).tolist()
+                for source in names.WRENCH_SOURCES}
+        for boat in self.boats:
+            template = boat.templates["wrench"]
+            for source in names.WRENCH_SOURCES:
+                boat.pubs[source].publish(template.pack(sec, nanosec, *rows[source][boat.index]))
+
+    def _publish_diagnostics(self, stamp) -> None:
+        """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""
+        reports = fleet_reports(self._fleet, self._state, self.sea, self._substeps)
+        self._diag_pub.publish(diagnostic_array(stamp, [
+            (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message, r.values)
+            for boat, r in zip(self.boats, reports, strict=True)]))

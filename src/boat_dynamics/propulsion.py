@@ -11,12 +11,11 @@ tau dT/dt = T_cmd - T, integrated exactly over a step.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.wrench import Wrench, wrench_at
+from boat_dynamics.wrench import Wrench, cross
 
 __all__ = ["Propulsion", "lagged_throttle", "thrust"]
 
@@ -42,32 +41,39 @@ class Propulsion:
     time_constant: float = 0.0
 
 
-def lagged_throttle(model: Propulsion, actual: float, command: float, dt: float) -> float:
-    """Actual throttle after dt s of first-order lag toward ``command`` (exact for a step)."""
-    if model.time_constant <= 0.0:
+def lagged_throttle(model: Propulsion, actual, command, dt: float):
+    """Actual throttle after dt s of first-order lag toward ``command`` (exact for a step).
+
+    ``actual``, ``command`` and the model's ``time_constant`` may be (B,) arrays (one per boat).
+    """
+    tau = np.asarray(model.time_constant)
+    if not np.any(tau > 0.0):
         return command
-    return command + (actual - command) * math.exp(-dt / model.time_constant)
+    decay = np.exp(-dt / np.where(tau > 0.0, tau, 1.0))
+    return np.where(tau > 0.0, command + (np.asarray(actual) - command) * decay, command)
 
 
-def thrust(model: Propulsion, throttle: float, nozzle_angle: float,
-           center_of_mass: np.ndarray) -> Wrench:
+def thrust(model: Propulsion, throttle, nozzle_angle, center_of_mass: np.ndarray) -> Wrench:
     """Thrust wrench.
 
     Args:
-        model: thruster parameters.
-        throttle: -1..1, actual fraction of max thrust; negative = reverse.
-        nozzle_angle: rad, rudder command (used when the thruster is steerable).
-        center_of_mass: (3,) m, body frame.
+        model: thruster parameters (numeric fields may be stacked per boat: (B,), (B, 3)).
+        throttle: -1..1 or (B,), actual fraction of max thrust; negative = reverse.
+        nozzle_angle: rad or (B,), rudder command (used when the thruster is steerable).
+        center_of_mass: (..., 3) m, body frame.
 
     Returns:
-        The thrust wrench about the centre of mass, body frame.
+        The thrust wrench about the centre of mass, body frame, (..., 3) each.
     """
-    direction = model.direction
-    if model.steerable and nozzle_angle != 0.0:
-        c, s = math.cos(-nozzle_angle), math.sin(-nozzle_angle)
-        direction = np.array([c * direction[0] - s * direction[1],
-                              s * direction[0] + c * direction[1], direction[2]])
-    force = throttle * model.max_thrust * direction
+    direction = np.asarray(model.direction, dtype=float)
+    if model.steerable:
+        angle = -np.asarray(nozzle_angle, dtype=float)
+        c, s = np.cos(angle), np.sin(angle)
+        dx, dy = direction[..., 0], direction[..., 1]
+        direction = np.stack([c * dx - s * dy, s * dx + c * dy,
+                              np.broadcast_to(direction[..., 2], np.shape(c * dx))], axis=-1)
+    magnitude = np.asarray(throttle, dtype=float) * np.asarray(model.max_thrust, dtype=float)
+    force = magnitude[..., None] * direction
     if model.at_center_of_mass:
-        return Wrench(force, np.zeros(3))
-    return wrench_at(force, model.position - center_of_mass)
+        return Wrench(force, np.zeros_like(force))
+    return Wrench(force, cross(np.asarray(model.position) - center_of_mass, force))

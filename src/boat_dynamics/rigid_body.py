@@ -27,29 +27,33 @@ __all__ = [
 
 
 def quat_multiply(q: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """Hamilton product q * r of (x, y, z, w) quaternions."""
-    x1, y1, z1, w1 = q
-    x2, y2, z2, w2 = r
-    return np.array(
+    """Hamilton product q * r of (..., 4) (x, y, z, w) quaternions (broadcasting)."""
+    x1, y1, z1, w1 = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    x2, y2, z2, w2 = r[..., 0], r[..., 1], r[..., 2], r[..., 3]
+    return np.stack(
         [
             w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
             w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
             w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
             w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-        ]
+        ],
+        axis=-1,
     )
 
 
 def rotation_matrix(q: np.ndarray) -> np.ndarray:
-    """(3, 3) matrix R rotating body vectors into the world frame, from a unit (x, y, z, w)."""
-    x, y, z, w = q
-    return np.array(
+    """(..., 3, 3) matrices R rotating body vectors into the world, from unit (x, y, z, w)."""
+    x, y, z, w = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    xx, yy, zz = x * x, y * y, z * z
+    xy, xz, yz, xw, yw, zw = x * y, x * z, y * z, x * w, y * w, z * w
+    return np.stack(
         [
-            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-        ]
-    )
+            1 - 2 * (yy + zz), 2 * (xy - zw), 2 * (xz + yw),
+            2 * (xy + zw), 1 - 2 * (xx + zz), 2 * (yz - xw),
+            2 * (xz - yw), 2 * (yz + xw), 1 - 2 * (xx + yy),
+        ],
+        axis=-1,
+    ).reshape((*q.shape[:-1], 3, 3))
 
 
 def quat_from_euler(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -80,12 +84,18 @@ def quat_to_euler(q: np.ndarray) -> tuple[float, float, float]:
 
 
 def _quat_exp(rotation_vector: np.ndarray) -> np.ndarray:
-    """Unit quaternion of a rotation by |v| rad about v/|v| (body frame)."""
-    angle = float(np.linalg.norm(rotation_vector))
-    if angle < 1e-12:
-        return np.array([*(0.5 * rotation_vector), 1.0]) / np.sqrt(1.0 + 0.25 * angle * angle)
-    axis = rotation_vector / angle
-    return np.array([*(axis * np.sin(angle / 2)), np.cos(angle / 2)])
+    """Unit (..., 4) quaternions of rotations by |v| rad about v/|v|, from (..., 3) v.
+
+    Below 1e-12 rad the first-order form (v/2, 1), normalized, avoids dividing by |v|.
+    """
+    angle = np.sqrt(np.einsum("...i,...i->...", rotation_vector, rotation_vector))
+    small = angle < 1e-12
+    half = 0.5 * angle
+    # sin(|v|/2)/|v|, with its limit 1/2 at 0 (then renormalized with cos -> 1)
+    scale = np.where(small, 0.5 / np.sqrt(1.0 + half * half),
+                     np.sin(half) / np.where(small, 1.0, angle))
+    cos = np.where(small, 1.0 / np.sqrt(1.0 + half * half), np.cos(half))
+    return np.concatenate([rotation_vector * scale[..., None], cos[..., None]], axis=-1)
 
 
 def integrate(
@@ -104,15 +114,18 @@ def integrate(
     Velocities are updated first from the forces, then the pose from the new velocities.
 
     Args:
-        position: (3,) m, centre of mass, world frame.
-        orientation: (4,) unit quaternion (x, y, z, w), body to world.
-        velocity: (3,) m/s, body frame.
-        angular_velocity: (3,) rad/s, body frame.
-        force: (3,) N, total, body frame.
-        torque: (3,) N m, total about the centre of mass, body frame.
-        mass: (3,) kg, effective mass per body axis (rigid-body mass plus added mass).
-        inertia: (3,) kg m^2, principal moments about the centre of mass (plus added inertia).
+        position: (..., 3) m, centre of mass, world frame.
+        orientation: (..., 4) unit quaternion (x, y, z, w), body to world.
+        velocity: (..., 3) m/s, body frame.
+        angular_velocity: (..., 3) rad/s, body frame.
+        force: (..., 3) N, total, body frame.
+        torque: (..., 3) N m, total about the centre of mass, body frame.
+        mass: (..., 3) kg, effective mass per body axis (rigid-body mass plus added mass).
+        inertia: (..., 3) kg m^2, principal moments about the centre of mass (plus added
+            inertia).
         dt: s.
+
+    The leading axes (``...``) are boats: a whole fleet integrates in one call.
 
     Returns:
         New (position, orientation, velocity, angular_velocity).
@@ -122,6 +135,6 @@ def integrate(
     v = velocity + dt * v_dot
     w = angular_velocity + dt * w_dot
     q = quat_multiply(orientation, _quat_exp(w * dt))
-    q /= np.linalg.norm(q)
-    p = position + dt * (rotation_matrix(q) @ v)
+    q = q / np.sqrt(np.einsum("...i,...i->...", q, q))[..., None]
+    p = position + dt * np.einsum("...ij,...j->...i", rotation_matrix(q), v)
     return p, q, v, w

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from boat_dynamics.wrench import ZERO_WRENCH, Wrench, wrench_at
+from boat_dynamics.wrench import Wrench, cross
 
 __all__ = ["RUDDER_MODELS", "Rudder", "rudder_wrench"]
 
@@ -48,25 +48,35 @@ class Rudder:
     max_speed: float = 1.0
 
 
-def rudder_wrench(model: Rudder, angle: float, surge_speed: float, water_density: float,
+def rudder_wrench(model: Rudder, angle, surge_speed, water_density,
                   center_of_mass: np.ndarray) -> Wrench:
     """Rudder wrench about the centre of mass, body frame.
 
     Args:
-        model: rudder parameters.
-        angle: delta, rad, + turns the bow to port.
-        surge_speed: u, m/s, body-x speed through the water.
-        water_density: rho, kg/m^3.
-        center_of_mass: (3,) m, body frame.
+        model: rudder parameters (numeric fields may be stacked per boat: (B,), (B, 3)).
+        angle: delta, rad or (B,), + turns the bow to port.
+        surge_speed: u, m/s or (B,), body-x speed through the water.
+        water_density: rho, kg/m^3 or (B,).
+        center_of_mass: (..., 3) m, body frame.
+
+    Returns:
+        The wrench, (..., 3) each.
     """
+    angle = np.asarray(angle, dtype=float)
+    u = np.asarray(surge_speed, dtype=float)
+    shape = np.broadcast_shapes(angle.shape, u.shape, np.shape(center_of_mass)[:-1])
+    zero = np.zeros(shape)
     if model.model == "lift":
-        side = -0.5 * water_density * model.lift_coefficient * model.area
-        side *= surge_speed * abs(surge_speed) * np.sin(angle)
-        return wrench_at(np.array([0.0, side, 0.0]), model.position - center_of_mass)
+        side = (-0.5 * np.asarray(water_density) * model.lift_coefficient * model.area
+                * u * np.abs(u) * np.sin(angle))
+        force = np.stack([zero, zero + side, zero], axis=-1)
+        return Wrench(force, cross(np.asarray(model.position) - center_of_mass, force))
     fraction = angle / model.max_angle
     if model.model == "torque":
-        return Wrench(np.zeros(3), np.array([0.0, 0.0, model.max_torque * fraction]))
-    if model.model == "hybrid":
-        torque = model.base_torque + model.max_torque * abs(surge_speed) / model.max_speed
-        return Wrench(np.zeros(3), np.array([0.0, 0.0, torque * fraction]))
-    return ZERO_WRENCH
+        yaw = np.asarray(model.max_torque) * fraction
+    elif model.model == "hybrid":
+        yaw = (np.asarray(model.base_torque)
+               + np.asarray(model.max_torque) * np.abs(u) / model.max_speed) * fraction
+    else:
+        return Wrench(np.zeros((*shape, 3)), np.zeros((*shape, 3)))
+    return Wrench(np.zeros((*shape, 3)), np.stack([zero, zero, zero + yaw], axis=-1))

@@ -16,13 +16,13 @@ from typing import Any
 import numpy as np
 import yaml
 
-from boat_dynamics.boat import BoatParams, BoatState, initial_state
 from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.commands import CommandScript
 from boat_dynamics.control import CONTROL_MODES, ControlSettings
 from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.hull_drag import HullDrag
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.model import BoatParams, BoatState, initial_state
 from boat_dynamics.propulsion import Propulsion
 from boat_dynamics.rudder import RUDDER_MODELS, Rudder
 from boat_dynamics.tuning import critical_damping, equilibrium_height

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ZERO_WRENCH", "Wrench", "cross", "wrench_at"]
+__all__ = ["ZERO_WRENCH", "Wrench", "cross", "sum_by_owner", "wrench_at"]
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -56,3 +56,20 @@ def wrench_at(forces: np.ndarray, points: np.ndarray) -> Wrench:
     f = np.atleast_2d(forces)
     r = np.atleast_2d(points)
     return Wrench(f.sum(axis=0), cross(r, f).sum(axis=0))
+
+
+def sum_by_owner(values: np.ndarray, owner: np.ndarray, count: int) -> np.ndarray:
+    """Per-boat sums of per-element rows: out[b] = sum of values[i] with owner[i] == b.
+
+    Args:
+        values: (T, K) per-element quantities (triangles, sample points).
+        owner: (T,) int, the boat of each element, in [0, count).
+        count: number of boats.
+
+    Returns:
+        (count, K) sums (zero for a boat with no element).
+    """
+    if count == 1:
+        return values.sum(axis=0, keepdims=True)
+    return np.stack([np.bincount(owner, weights=values[:, k], minlength=count)
+                     for k in range(values.shape[1])], axis=-1)

@@ -56,11 +56,11 @@ class TappedPublisher:
             tap.qos[topic] = qos
 
     def publish(self, msg: object) -> None:
-        """Publish ``msg`` (and hand it to the tap)."""
+        """Publish ``msg``, a message or its serialized bytes (and hand it to the tap)."""
         if self._tap is None:
             self._pub.publish(msg)
             return
-        data = serialize_message(msg)
+        data = msg if isinstance(msg, bytes) else serialize_message(msg)
         self._pub.publish(data)
         self._tap.sink(self.topic, self._type, data)
 

@@ -401,6 +401,12 @@ class SurfaceSample:
     accelerations: np.ndarray
     rest_xy: np.ndarray
 
+    def rows(self, start: int, stop: int) -> SurfaceSample:
+        """The sample at points start..stop-1 (views, no copy)."""
+        return SurfaceSample(self.heights[start:stop], self.normals[start:stop],
+                             self.velocities[start:stop], self.accelerations[start:stop],
+                             self.rest_xy[start:stop])
+
 
 def sample_surface(
     wf: WaveField,

@@ -31,3 +31,29 @@ def test_report_warns_when_submerged_or_airborne():
     assert "depth clamp at 1 m" in dict(deep.values)["remedies"]
     high = boat_report(params, initial_state(params, [0, 0, 3.0]), WaveField())
     assert high.level == 1 and high.message == "out of the water"
+
+
+def test_fleet_reports_equal_each_boats_report():
+    from boat_dynamics.diagnostics import fleet_reports
+    from boat_dynamics.fleet import Fleet, FleetState
+    from ocean_sim.waves import WaveComponent
+
+    sc = parse_scenario({"boats": [
+        {"name": "a", "mass": 3280.0, "initial_pose": {"position": [0, 0, 0.1]}},
+        {"name": "b", "mass": 2000.0, "hull": {"type": "box", "length": 3.0, "beam": 1.5,
+                                                "height": 1.0},
+         "initial_pose": {"position": [10, 0, 0.0], "roll_deg": 10.0}},
+        {"name": "c", "buoyancy": {"model": "sample_points"},
+         "initial_pose": {"position": [20, 0, 0.0]}},
+        {"name": "d", "buoyancy": {"model": "sample_points", "max_depth": 0.5},
+         "initial_pose": {"position": [30, 0, 3.0]}},
+    ]})
+    sea = WaveField((WaveComponent(0.3, 15.0, 0.4, 0.7, 0.2),))
+    params = [b.params for b in sc.boats]
+    states = [b.initial for b in sc.boats]
+    together = fleet_reports(Fleet(params), FleetState.stack(states), sea, substeps=1)
+    alone = [boat_report(p, s, sea) for p, s in zip(params, states, strict=True)]
+    assert together == alone
+    assert [r.level for r in together] == [0, 0, 0, 1]
+    assert dict(together[1].values)["waterplane_area_m2"] != dict(
+        together[0].values)["waterplane_area_m2"]

@@ -1,0 +1,165 @@
+"""Fast serialization of the fixed-layout messages the simulation publishes every step.
+
+Building a ``nav_msgs/Odometry`` in Python and letting rclpy serialize it costs about 40 us
+(measured here: 21 us to build and set the fields, 18 us to serialize and publish), while
+publishing already-serialized bytes costs about 3 us. The messages a boat publishes at high
+rate (odometry, pose, twist, wrenches, /clock) have a fixed layout once their frame ids are
+fixed: only numbers change. A :class:`CdrTemplate` serializes a prototype message once with
+rclpy, finds where each numeric field lives in the bytes (by serializing it again with that
+field set to a sentinel), and then writes new values into a copy of the bytes with
+:mod:`struct`. The result deserializes to the same message as
+``rclpy.serialization.serialize_message`` gives for the same values, with the same length
+(tested; only the alignment padding, which rclpy leaves uninitialized, may differ), so
+subscribers, bags and ROS tools cannot tell.
+"""
+
+from __future__ import annotations
+
+import struct
+from collections.abc import Sequence
+from functools import reduce
+
+from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rclpy.serialization import serialize_message
+from rosgraph_msgs.msg import Clock
+
+__all__ = [
+    "CdrTemplate",
+    "TemplateError",
+    "clock_template",
+    "odometry_template",
+    "pose_template",
+    "stamp_parts",
+    "twist_template",
+    "wrench_template",
+]
+
+_SENTINEL_F64 = struct.unpack("<d", bytes.fromhex("5ac37e11962bd43f"))[0]  # 0.318..., distinctive
+_SENTINEL_I32 = 0x5AC37E11
+_KINDS = {"float64": ("d", 8), "int32": ("i", 4), "uint32": ("I", 4)}
+
+
+class TemplateError(ValueError):
+    """A field cannot be located in a message's serialized form."""
+
+
+def stamp_parts(seconds: float) -> tuple[int, int]:
+    """(sec, nanosec) of a builtin_interfaces/Time for ``seconds`` >= 0, rounded to the ns."""
+    ns = round(seconds * 1e9)
+    return ns // 1_000_000_000, ns % 1_000_000_000
+
+
+def _set(msg: object, path: str, value: object) -> None:
+    *parents, leaf = path.split(".")
+    setattr(reduce(getattr, parents, msg), leaf, value)
+
+
+class CdrTemplate:
+    """The serialized bytes of a message, with its numeric fields writable in place.
+
+    Args:
+        msg_class: the message type, e.g. ``nav_msgs.msg.Odometry``.
+        fields: dotted field paths in the order :meth:`pack` takes their values, each with its
+            kind: ``("pose.pose.position.x", "float64")``, ``("header.stamp.sec", "int32")``.
+        strings: dotted paths of string fields and their fixed values (frame ids).
+
+    Raises:
+        TemplateError: a field is not where a fixed-layout message would have it (for instance
+            a field of a variable-length array, or a kind that does not match the type).
+    """
+
+    def __init__(self, msg_class: type, fields: Sequence[tuple[str, str]],
+                 strings: dict[str, str] | None = None) -> None:
+        def prototype():
+            msg = msg_class()
+            for path, value in (strings or {}).items():
+                _set(msg, path, value)
+            return msg
+
+        base = serialize_message(prototype())
+        self._order = "<" if base[1] == 1 else ">"  # encapsulation: CDR_LE = 0x0001
+        located = []
+        for path, kind in fields:
+            if kind not in _KINDS:
+                raise TemplateError(f"{path}: kind {kind!r} is not one of {sorted(_KINDS)}")
+            code, size = _KINDS[kind]
+            msg = prototype()
+            sentinel = _SENTINEL_F64 if kind == "float64" else _SENTINEL_I32
+            try:
+                _set(msg, path, sentinel)
+            except (AttributeError, AssertionError, TypeError, ValueError) as exc:
+                raise TemplateError(f"{msg_class.__name__}.{path} cannot hold a {kind}: "
+                                    f"{exc}") from exc
+            probe = serialize_message(msg)
+            # Alignment padding in rclpy's output is not initialized, so the field is found by
+            # its sentinel's bytes, at an aligned offset (CDR aligns relative to byte 4).
+            pattern = struct.pack(self._order + code, sentinel)
+            places = [i for i in range(4, len(probe) - size + 1, size)
+                      if probe[i:i + size] == pattern]
+            if len(probe) != len(base) or len(places) != 1:
+                raise TemplateError(f"{msg_class.__name__}.{path} is not a {kind} with a "
+                                    "fixed place in the serialized message")
+            located.append((places[0], code, size))
+        self._base = bytes(base)
+        # contiguous fields (x, y, z, w ...) are written with one struct call
+        self._runs: list[tuple[struct.Struct, int, int]] = []  # (struct, offset, n values)
+        start = 0
+        for i in range(1, len(located) + 1):
+            if i == len(located) or located[i][0] != located[i - 1][0] + located[i - 1][2]:
+                codes = "".join(code for _, code, _ in located[start:i])
+                self._runs.append((struct.Struct(self._order + codes), located[start][0],
+                                   i - start))
+                start = i
+        self.size = len(base)
+
+    def pack(self, *values: float | int) -> bytes:
+        """The serialized message with ``values`` in the fields, in the constructor's order."""
+        buf = bytearray(self._base)
+        k = 0
+        for packer, offset, n in self._runs:
+            packer.pack_into(buf, offset, *values[k:k + n])
+            k += n
+        return bytes(buf)
+
+
+_STAMP = (("header.stamp.sec", "int32"), ("header.stamp.nanosec", "uint32"))
+
+
+def _doubles(prefix: str, names: str) -> tuple[tuple[str, str], ...]:
+    return tuple((f"{prefix}.{n}", "float64") for n in names)
+
+
+def odometry_template(frame: str, child: str) -> CdrTemplate:
+    """nav_msgs/Odometry; pack(sec, nanosec, px, py, pz, qx, qy, qz, qw, vx, vy, vz, wx, wy, wz).
+
+    Covariances stay zero (unknown), as in :func:`boat_msgs_py.convert.odometry`.
+    """
+    return CdrTemplate(Odometry, _STAMP + _doubles("pose.pose.position", "xyz")
+                       + _doubles("pose.pose.orientation", "xyzw")
+                       + _doubles("twist.twist.linear", "xyz")
+                       + _doubles("twist.twist.angular", "xyz"),
+                       {"header.frame_id": frame, "child_frame_id": child})
+
+
+def pose_template(frame: str) -> CdrTemplate:
+    """geometry_msgs/PoseStamped; pack(sec, nanosec, px, py, pz, qx, qy, qz, qw)."""
+    return CdrTemplate(PoseStamped, _STAMP + _doubles("pose.position", "xyz")
+                       + _doubles("pose.orientation", "xyzw"), {"header.frame_id": frame})
+
+
+def twist_template(frame: str) -> CdrTemplate:
+    """geometry_msgs/TwistStamped; pack(sec, nanosec, vx, vy, vz, wx, wy, wz)."""
+    return CdrTemplate(TwistStamped, _STAMP + _doubles("twist.linear", "xyz")
+                       + _doubles("twist.angular", "xyz"), {"header.frame_id": frame})
+
+
+def wrench_template(frame: str) -> CdrTemplate:
+    """geometry_msgs/WrenchStamped; pack(sec, nanosec, fx, fy, fz, tx, ty, tz)."""
+    return CdrTemplate(WrenchStamped, _STAMP + _doubles("wrench.force", "xyz")
+                       + _doubles("wrench.torque", "xyz"), {"header.frame_id": frame})
+
+
+def clock_template() -> CdrTemplate:
+    """rosgraph_msgs/Clock; pack(sec, nanosec)."""
+    return CdrTemplate(Clock, (("clock.sec", "int32"), ("clock.nanosec", "uint32")))

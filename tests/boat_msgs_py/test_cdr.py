@@ -1,0 +1,92 @@
+"""The hand-packed messages are what rclpy serializes (no ROS graph needed).
+
+rclpy leaves CDR alignment padding uninitialized, so serialized bytes are compared through
+deserialization (every field) and length, not byte for byte.
+"""
+
+import math
+import struct
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from rclpy.serialization import deserialize_message, serialize_message
+
+from boat_msgs_py.cdr import (
+    CdrTemplate,
+    TemplateError,
+    clock_template,
+    odometry_template,
+    pose_template,
+    stamp_parts,
+    twist_template,
+    wrench_template,
+)
+from boat_msgs_py.convert import odometry, pose_stamped, seconds_to_time, twist_stamped
+from boat_msgs_py.convert import wrench_stamped as wrench_msg
+
+
+def same(data: bytes, msg) -> None:
+    """``data`` is ``msg`` serialized: equal after deserialization, and as long."""
+    assert deserialize_message(data, type(msg)) == msg
+    assert len(data) == len(serialize_message(msg))
+
+
+finite = st.floats(allow_nan=False, allow_infinity=False, width=64)
+frames = st.sampled_from(["", "world", "alpha/base_link", "a_very_long_frame_name/base_link"])
+seconds = st.floats(min_value=0.0, max_value=2.0e9, allow_nan=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(frames, frames, seconds, st.lists(finite, min_size=13, max_size=13))
+def test_odometry_pose_twist_equal_rclpy_serialization(frame, child, t, v):
+    sec, nanosec = stamp_parts(t)
+    stamp = seconds_to_time(t)
+    assert (stamp.sec, stamp.nanosec) == (sec, nanosec)
+    msg = odometry(stamp, child, v[0:3], v[3:7], v[7:10], v[10:13])
+    msg.header.frame_id = frame
+    same(odometry_template(frame, child).pack(sec, nanosec, *v), msg)
+    same(pose_template(frame).pack(sec, nanosec, *v[:7]), pose_stamped(msg))
+    same(twist_template(child).pack(sec, nanosec, *v[7:]), twist_stamped(msg))
+
+
+@settings(max_examples=60, deadline=None)
+@given(frames, seconds, st.lists(finite, min_size=6, max_size=6))
+def test_wrench_and_clock_equal_rclpy_serialization(frame, t, v):
+    from geometry_msgs.msg import WrenchStamped
+    from rosgraph_msgs.msg import Clock
+
+    sec, nanosec = stamp_parts(t)
+    msg = wrench_msg(seconds_to_time(t), frame, v[:3], v[3:])
+    data = wrench_template(frame).pack(sec, nanosec, *v)
+    same(data, msg)
+    back = deserialize_message(data, WrenchStamped)
+    assert [back.wrench.force.x, back.wrench.torque.z] == [v[0], v[5]]
+    same(clock_template().pack(sec, nanosec), Clock(clock=seconds_to_time(t)))
+
+
+def test_stamp_parts_rounds_to_the_nanosecond():
+    assert stamp_parts(1.5) == (1, 500_000_000)
+    assert stamp_parts(2.9999999999) == (3, 0)
+    assert stamp_parts(0.0) == (0, 0)
+
+
+def test_a_field_that_is_not_there_or_of_another_kind_is_refused():
+    from nav_msgs.msg import Odometry
+
+    with pytest.raises(TemplateError, match=r"pose\.pose\.nowhere cannot hold a float64"):
+        CdrTemplate(Odometry, (("pose.pose.nowhere", "float64"),))
+    with pytest.raises(TemplateError, match=r"position\.x is not a int32"):
+        CdrTemplate(Odometry, (("pose.pose.position.x", "int32"),))
+    with pytest.raises(TemplateError, match="kind 'float16'"):
+        CdrTemplate(Odometry, (("pose.pose.position.x", "float16"),))
+
+
+def test_pack_writes_only_the_named_fields():
+    t = wrench_template("b/base_link")
+    zero = t.pack(0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    one = t.pack(0, 0, math.pi, 0.0, 0.0, 0.0, 0.0, 0.0)
+    at = one.find(struct.pack("<d", math.pi))
+    assert at > 0 and len(zero) == len(one) == t.size
+    assert zero[at:at + 8] == bytes(8)
+    assert zero[:at] == one[:at] and zero[at + 8:] == one[at + 8:]
