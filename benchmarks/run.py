@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from boat_dynamics.boat import BoatInputs, step
+from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step
 from boat_dynamics.scenario import default_scenario_path, load_scenario, parse_scenario
 from ocean_sim.waves import WaveComponent, WaveField, sample_surface
 
@@ -61,28 +62,49 @@ def bench_waves() -> None:
 
 
 def bench_boat_step() -> None:
-    """Microseconds per boat-step with 16 wave components, per buoyancy model."""
-    print("== boat step, 16 wave components (one boat stepped alone)")
+    """Microseconds per boat-step with 16 wave components, per buoyancy model.
+
+    Two figures per hull: one boat stepped alone (``boat.step``), and the cost per boat when a
+    fleet of identical boats is stepped together (``fleet.fleet_step``, what the dynamics node
+    does), where numpy's per-call cost is shared by all boats.
+    """
+    print("== boat step, 16 wave components: one boat alone, and per boat in a fleet")
     sea = _sea(16)
     inputs = BoatInputs(1.0, 0.2)
     cases = (
         ("sample points, 7 (boat layout)", {"buoyancy": {"model": "sample_points",
-                                                          "layout": "boat"}}),
-        ("mesh box, 12 triangles", {}),
-        ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}),
+                                                          "layout": "boat"}}, 100),
+        ("mesh box, 12 triangles", {}, 100),
+        ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}, 10),
     )
-    for label, boat in cases:
+    for label, boat, fleet_size in cases:
         sc = parse_scenario({"boats": [boat]})
         params, initial = sc.boats[0].params, sc.boats[0].initial
-        n = 400 if "972" in label else 2000
+        n = 300 if "972" in label else 1000
 
-        def run(params=params, initial=initial, n=n):
+        def alone(params=params, initial=initial, n=n):
             s = initial
             for _ in range(n):
                 s = step(params, s, inputs, sea, 0.01)
 
-        sec = _best_of(run, 3)
-        print(f"  {label:<32}: {sec / n * 1e6:8.1f} us per boat-step")
+        sec = _best_of(alone, 3)
+        side = math.ceil(math.sqrt(fleet_size))
+        fleet_sc = parse_scenario({"boats": [
+            {**boat, "name": f"b{i}", "initial_pose": {"position": [
+                12.0 * (i % side), 12.0 * (i // side), 0.0]}} for i in range(fleet_size)]})
+        fleet = Fleet([b.params for b in fleet_sc.boats])
+        start = FleetState.stack([b.initial for b in fleet_sc.boats])
+        commands = FleetInputs.stack([inputs] * fleet_size)
+        m = 30 if "972" in label else 100
+
+        def together(fleet=fleet, start=start, commands=commands, m=m):
+            s = start
+            for _ in range(m):
+                s, _ = fleet_step(fleet, s, commands, sea, 0.01)
+
+        fsec = _best_of(together, 3)
+        print(f"  {label:<32}: alone {sec / n * 1e6:8.1f} us per boat-step; in a fleet of "
+              f"{fleet_size:>3}: {fsec / (m * fleet_size) * 1e6:7.1f} us per boat-step")
 
 
 def _fleet(n: int) -> dict:
