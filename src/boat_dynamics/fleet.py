@@ -246,6 +246,8 @@ class Fleet:
         added = np.array([p.added_mass for p in ps], dtype=float)
         self.effective_mass = self.mass[:, None] + added[:, :3]
         self.effective_inertia = self.inertia + added[:, 3:]
+        products = np.array([p.inertia_products for p in ps], dtype=float)
+        self.inertia_products = products if np.any(products != 0.0) else None
         self.damping_linear = np.array([p.damping_linear for p in ps], dtype=float)
         self.damping_quadratic = np.array([p.damping_quadratic for p in ps], dtype=float)
         self.water_density = np.array([p.water_density for p in ps])
@@ -434,7 +436,8 @@ def fleet_step(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: WaveFi
             torque[i] += _pd_torque(fleet.params[i], state, i, normals[i], dt)
     p, q, v, w = integrate(state.position, state.orientation, state.velocity,
                            state.angular_velocity, forces.total.force, torque,
-                           fleet.effective_mass, fleet.effective_inertia, dt)
+                           fleet.effective_mass, fleet.effective_inertia, dt,
+                           fleet.inertia_products)
     v = reflect_off_keel(v, fleet.keel_rate, dt)
     after = FleetState(state.t + dt, p, q, v, w, throttle, state.control_weight)
     if fleet.special:

@@ -116,22 +116,39 @@ class HullMesh:
         return self.vertices.max(axis=0) - self.vertices.min(axis=0)
 
     def solid_inertia(self, mass: float) -> np.ndarray:
-        """Principal-axis moments (3,) kg m^2 of a uniform solid of ``mass`` about its centroid.
+        """Moments of inertia (3,) kg m^2 [Ixx, Iyy, Izz] of a uniform solid about its centroid.
 
-        Body-axis diagonal of the inertia tensor (products of inertia are dropped: hulls are
-        symmetric about their centre plane). Source: Eberly, "Polyhedral Mass Properties"
-        (2002), the signed-tetrahedron integrals.
+        The diagonal of :meth:`inertia_tensor` (body axes).
+        """
+        return np.diag(self.inertia_tensor(mass)).copy()
+
+    def inertia_products(self, mass: float) -> np.ndarray:
+        """Products of inertia (3,) kg m^2 [Ixy, Ixz, Iyz] of a uniform solid about its centroid.
+
+        Ixy = integral(x y dm), ...; the tensor holds them negated (Fossen 2011, eq. 3.28).
+        """
+        tensor = self.inertia_tensor(mass)
+        return -np.array([tensor[0, 1], tensor[0, 2], tensor[1, 2]])
+
+    def inertia_tensor(self, mass: float) -> np.ndarray:
+        """Inertia tensor (3, 3) kg m^2 of a uniform solid of ``mass`` about its centroid.
+
+        Each face and the origin make a signed tetrahedron; for a tetrahedron (0, a, b, d) of
+        signed volume V = det / 6, integral(x_i x_j dV) = det / 120 (sum_k v_ki v_kj +
+        (sum_k v_ki)(sum_k v_kj)). Source: Eberly, "Polyhedral Mass Properties" (2002);
+        Tonon, "Explicit exact formulas for the 3-D tetrahedron inertia tensor" (2004).
         """
         c = self.corners
         a, b, d = c[:, 0], c[:, 1], c[:, 2]
         det = np.einsum("ij,ij->i", a, np.cross(b, d))  # 6 x signed tetrahedron volume
         vol = det.sum() / 6.0
-        centroid = (det[:, None] * (a + b + d)).sum(axis=0) / (24.0 * vol)
-        # second moments of each tetrahedron (origin, a, b, d): integral of x_i^2
-        sq = (a * a + b * b + d * d + a * b + b * d + d * a)
-        second = (det[:, None] * sq).sum(axis=0) / 60.0  # integral of x^2, y^2, z^2 dV
-        second = second / vol * mass - mass * centroid**2  # about the centroid
-        return np.array([second[1] + second[2], second[0] + second[2], second[0] + second[1]])
+        total = a + b + d
+        centroid = (det[:, None] * total).sum(axis=0) / (24.0 * vol)
+        second = (np.einsum("t,ti,tj->ij", det, a, a) + np.einsum("t,ti,tj->ij", det, b, b)
+                  + np.einsum("t,ti,tj->ij", det, d, d)
+                  + np.einsum("t,ti,tj->ij", det, total, total)) / 120.0  # integral x_i x_j dV
+        second = second / vol * mass - mass * np.outer(centroid, centroid)  # about the centroid
+        return np.trace(second) * np.eye(3) - second
 
 
 def _box_face_grid(n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -50,6 +50,8 @@ class BoatParams:
         keel_rate: 1/s, the keel's velocity reflection (0 = off).
         stokes_drift: add the sea's Stokes drift to the water velocity.
         control: the control mode and its settings.
+        inertia_products: (3,) kg m^2, products of inertia [Ixy, Ixz, Iyz] = integral(x y dm),
+            ... about the centre of mass (body axes); the tensor holds them negated.
     """
 
     hull: BoxHull
@@ -68,6 +70,7 @@ class BoatParams:
     keel_rate: float = 0.0
     stokes_drift: bool = False
     control: ControlSettings = field(default_factory=ControlSettings)
+    inertia_products: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,7 @@ import numpy as np
 from boat_dynamics.wrench import cross
 
 __all__ = [
+    "inertia_tensor",
     "integrate",
     "quat_from_euler",
     "quat_multiply",
@@ -83,6 +84,20 @@ def quat_to_euler(q: np.ndarray) -> tuple[float, float, float]:
     return float(roll), float(pitch), float(yaw)
 
 
+def inertia_tensor(moments: np.ndarray, products: np.ndarray) -> np.ndarray:
+    """(..., 3, 3) kg m^2 inertia tensor from moments and products of inertia.
+
+    Args:
+        moments: (..., 3) [Ixx, Iyy, Izz].
+        products: (..., 3) [Ixy, Ixz, Iyz], integral(x y dm), ...; negated off the diagonal
+            (Fossen 2011, eq. 3.28).
+    """
+    ixx, iyy, izz = moments[..., 0], moments[..., 1], moments[..., 2]
+    ixy, ixz, iyz = -products[..., 0], -products[..., 1], -products[..., 2]
+    return np.stack([ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz], axis=-1).reshape(
+        (*np.shape(ixx), 3, 3))
+
+
 def _quat_exp(rotation_vector: np.ndarray) -> np.ndarray:
     """Unit (..., 4) quaternions of rotations by |v| rad about v/|v|, from (..., 3) v.
 
@@ -108,6 +123,7 @@ def integrate(
     mass: np.ndarray,
     inertia: np.ndarray,
     dt: float,
+    inertia_products: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """One semi-implicit (symplectic) Euler step of the body.
 
@@ -124,6 +140,10 @@ def integrate(
         inertia: (..., 3) kg m^2, principal moments about the centre of mass (plus added
             inertia).
         dt: s.
+        inertia_products: (..., 3) kg m^2 [Ixy, Ixz, Iyz] (integral(x y dm), ...), or None
+            for principal body axes. With them the full tensor
+            I = [[Ixx, -Ixy, -Ixz], [-Ixy, Iyy, -Iyz], [-Ixz, -Iyz, Izz]] is used
+            (Fossen 2011, eq. 3.28).
 
     The leading axes (``...``) are boats: a whole fleet integrates in one call.
 
@@ -131,7 +151,13 @@ def integrate(
         New (position, orientation, velocity, angular_velocity).
     """
     v_dot = force / mass - cross(angular_velocity, velocity)
-    w_dot = (torque - cross(angular_velocity, inertia * angular_velocity)) / inertia
+    if inertia_products is None:
+        w_dot = (torque - cross(angular_velocity, inertia * angular_velocity)) / inertia
+    else:
+        tensor = inertia_tensor(inertia, inertia_products)
+        spin = np.einsum("...ij,...j->...i", tensor, angular_velocity)
+        w_dot = np.linalg.solve(tensor, (torque - cross(angular_velocity, spin))[..., None])[
+            ..., 0]
     v = velocity + dt * v_dot
     w = angular_velocity + dt * w_dot
     q = quat_multiply(orientation, _quat_exp(w * dt))

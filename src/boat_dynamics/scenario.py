@@ -24,6 +24,7 @@ from boat_dynamics.hull_drag import HullDrag
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.model import BoatParams, BoatState, initial_state
 from boat_dynamics.propulsion import Propulsion
+from boat_dynamics.rigid_body import inertia_tensor
 from boat_dynamics.rudder import RUDDER_MODELS, Rudder
 from boat_dynamics.tuning import critical_damping, equilibrium_height
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
@@ -328,7 +329,7 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
-              "inertia_scale")
+              "inertia_scale", "inertia_products")
 
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -395,6 +396,15 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     if np.any(inertia <= 0.0):
         raise ScenarioError(f"{key}.inertia", inertia_raw, "every moment must be > 0 (kg m^2)")
     inertia = inertia * _vector(d, "inertia_scale", key, 3, [1.0, 1.0, 1.0], low=0.01)
+    products_raw = d.get("inertia_products")
+    products = (_vector(d, "inertia_products", key, 3, [0.0, 0.0, 0.0])
+                if products_raw is not None or inertia_raw is not None
+                else mesh.inertia_products(mass))
+    products[np.abs(products) < 1e-9 * inertia.max()] = 0.0  # rounding of symmetric hulls
+    if np.linalg.eigvalsh(inertia_tensor(inertia, products)).min() <= 0.0:
+        raise ScenarioError(f"{key}.inertia_products", products_raw,
+                            "the inertia tensor must be positive definite (products of inertia "
+                            "too large for the moments)")
 
     bk = f"{key}.buoyancy"
     bd = _mapping(d.get("buoyancy"), bk)
@@ -473,7 +483,8 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     idd = _mapping(d.get("initial_pose"), ik)
     _only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
     params = BoatParams(
-        hull=hull, mass=mass, center_of_mass=com, inertia=inertia, buoyancy=buoyancy,
+        hull=hull, mass=mass, center_of_mass=com, inertia=inertia, inertia_products=products,
+        buoyancy=buoyancy,
         damping_linear=linear, damping_quadratic=quadratic, added_mass=added,
         propulsion=propulsion, rudder=rudder,
         water_density=sim.water_density, gravity=sim.gravity,

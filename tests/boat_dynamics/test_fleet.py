@@ -32,6 +32,7 @@ BOATS = [
     {"control_mode": "kinematic", "control": {"attitude": "pd"}},
     {"control_mode": "constrained"},
     {"control_mode": "blend"},
+    {"inertia": [3000, 9000, 10000], "inertia_products": [0, 800, 0]},
 ]
 
 
@@ -50,9 +51,9 @@ def test_a_mixed_fleet_stepped_together_equals_each_boat_alone():
     params = [b.params for b in sc.boats]
     inputs = commands(len(params))
     fleet = Fleet(params)
-    # boats 0, 1 and 7-9 share a code path (control modes apply after the step); 2-6 do not
-    assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9], [2], [3], [4],
-                                                               [5], [6]]
+    # boats 0, 1 and 7-10 share a code path (control modes apply after the step); 2-6 do not
+    assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9, 10], [2], [3],
+                                                               [4], [5], [6]]
     state = FleetState.stack([b.initial for b in sc.boats])
     alone = [b.initial for b in sc.boats]
     for _ in range(200):

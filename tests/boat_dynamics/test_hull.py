@@ -59,3 +59,17 @@ def test_unreadable_file_is_refused(tmp_path):
     bad.write_text("this is not a mesh")
     with pytest.raises(HullMeshError, match=r"hull\.stl"):
         load_mesh(str(bad))
+
+
+def test_inertia_tensor_of_a_turned_box_is_the_turned_diagonal():
+    from boat_dynamics.rigid_body import quat_from_euler, rotation_matrix
+
+    hull = BoxHull(4.0, 2.0, 1.0)
+    box = box_mesh(hull, 2)
+    r = rotation_matrix(quat_from_euler(0.2, 0.5, -0.3))
+    turned = HullMesh(box.vertices @ r.T, box.faces)
+    expected = r @ np.diag(hull.solid_inertia(100.0)) @ r.T
+    np.testing.assert_allclose(turned.inertia_tensor(100.0), expected, atol=1e-10)
+    products = turned.inertia_products(100.0)
+    assert products == pytest.approx([-expected[0, 1], -expected[0, 2], -expected[1, 2]])
+    assert np.all(box.inertia_products(100.0) == pytest.approx(0.0, abs=1e-12))

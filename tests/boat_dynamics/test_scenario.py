@@ -126,3 +126,13 @@ def test_beaufort_preset():
 def test_min_wavelength_reaches_the_boat():
     sc = parse_scenario({"boats": [{"min_wavelength": 5.0}]})
     assert sc.boats[0].params.min_wavelength == 5.0
+
+
+def test_inertia_products_from_the_hull_or_the_scenario_and_refused_when_impossible():
+    sc = parse_scenario({"boats": [{"name": "a"}, {"name": "b", "inertia": [1000, 4000, 4500],
+                                                    "inertia_products": [0, 300, 0]}]})
+    assert sc.boats[0].params.inertia_products.tolist() == [0.0, 0.0, 0.0]  # box: principal
+    assert sc.boats[1].params.inertia_products.tolist() == [0.0, 300.0, 0.0]
+    with pytest.raises(ScenarioError, match=r"boats\[0\]\.inertia_products.*positive definite"):
+        parse_scenario({"boats": [{"inertia": [1000, 4000, 4500],
+                                   "inertia_products": [0, 3000, 0]}]})
