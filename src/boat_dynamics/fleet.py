@@ -156,7 +156,7 @@ def _group_key(p: BoatParams) -> tuple:
     b = p.buoyancy
     kind = "mesh" if isinstance(b, MeshBuoyancy) else "points"
     return (kind, _structure(b), _structure(p.propulsion), _structure(p.rudder),
-            p.stokes_drift, p.min_wavelength)
+            p.stokes_drift, p.min_wavelength, p.wave_precision)
 
 
 @dataclass(frozen=True)
@@ -178,6 +178,7 @@ class _Group:
         length: (G,) m, hull lengths.
         stokes_drift: add the Stokes drift of the (filtered) sea to the water velocity.
         min_wavelength: m, the group's wave filter.
+        wave_precision: ``float64`` or ``float32``, of the group's surface queries.
     """
 
     index: np.ndarray
@@ -193,6 +194,7 @@ class _Group:
     length: np.ndarray
     stokes_drift: bool
     min_wavelength: float
+    wave_precision: str
 
     @classmethod
     def build(cls, params: Sequence[BoatParams], index: np.ndarray) -> _Group:
@@ -219,7 +221,7 @@ class _Group:
         return cls(index, mesh, points, body, owner, faces, face_owner, normals,
                    _stack([p.propulsion for p in params]), _stack([p.rudder for p in params]),
                    np.array([p.hull.length for p in params]), first.stokes_drift,
-                   first.min_wavelength)
+                   first.min_wavelength, first.wave_precision)
 
 
 class Fleet:
@@ -342,16 +344,18 @@ def _per_group(fleet: Fleet, model) -> Wrench:
 def _sample(sea: WaveField, t: float, queries: list, ref: np.ndarray) -> list:
     """The surface at every query's points and at its boats' reference points.
 
-    Groups sharing a wave filter share one sample_surface call (its fixed cost is paid once).
+    Groups sharing a wave filter and precision share one sample_surface call (its fixed cost
+    is paid once).
     """
-    by_filter: dict[float, list[int]] = {}
+    by_filter: dict[tuple[float, str], list[int]] = {}
     for k, (g, _) in enumerate(queries):
-        by_filter.setdefault(g.min_wavelength, []).append(k)
+        by_filter.setdefault((g.min_wavelength, g.wave_precision), []).append(k)
     out: list = [None] * len(queries)
-    for min_wavelength, members in by_filter.items():
+    for (min_wavelength, precision), members in by_filter.items():
         xy = np.concatenate([a for k in members
                              for a in (queries[k][1][:, :2], ref[queries[k][0].index, :2])])
-        surface = sample_surface(sea, xy, t, min_wavelength=min_wavelength)
+        surface = sample_surface(sea, xy, t, min_wavelength=min_wavelength,
+                                 precision=precision)
         start = 0
         for k in members:
             n, m = queries[k][1].shape[0], queries[k][0].index.shape[0]
@@ -469,7 +473,8 @@ def _apply_modes(fleet: Fleet, before: FleetState, after: FleetState, sea: WaveF
                                                            + dt / control.transition)
         pose_after = _pose(params, after, i)
         surface = sample_surface(sea, pose_after.ref[None, :2], after.t,
-                                 min_wavelength=params.min_wavelength)
+                                 min_wavelength=params.min_wavelength,
+                                 precision=params.wave_precision)
         pose = apply_mode(control, _pose(params, before, i), pose_after, weight,
                           float(surface.heights[0]), surface.normals[0],
                           float(surface.velocities[0, 2]), dt)

@@ -47,6 +47,8 @@ class BoatParams:
         water_density: rho, kg/m^3.
         gravity: g, m/s^2.
         min_wavelength: m, wave components shorter than this do not act on the boat.
+        wave_precision: ``float64`` or ``float32``, precision of the boat's surface queries
+            (:func:`ocean_sim.waves.sample_surface`).
         keel_rate: 1/s, the keel's velocity reflection (0 = off).
         stokes_drift: add the sea's Stokes drift to the water velocity.
         control: the control mode and its settings.
@@ -67,6 +69,7 @@ class BoatParams:
     water_density: float = WATER_DENSITY
     gravity: float = GRAVITY
     min_wavelength: float = 0.0
+    wave_precision: str = "float64"
     keel_rate: float = 0.0
     stokes_drift: bool = False
     control: ControlSettings = field(default_factory=ControlSettings)

@@ -29,7 +29,7 @@ from boat_dynamics.rudder import RUDDER_MODELS, Rudder
 from boat_dynamics.tuning import critical_damping, equilibrium_height
 from ocean_sim.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
-from ocean_sim.waves import InvalidSeaStateError, WaveComponent, WaveField
+from ocean_sim.waves import PRECISIONS, InvalidSeaStateError, WaveComponent, WaveField
 
 __all__ = [
     "BoatSpec",
@@ -72,6 +72,9 @@ class SimulationSettings:
         gravity: m/s^2.
         water_density: kg/m^3.
         cmd_timeout: s without a cmd_thrust message after which thrust is set to zero.
+        substeps: physics substeps per step.
+        wave_precision: precision of the boats' surface queries, ``float32`` (fast; heights
+            within about 1e-5 m of float64) or ``float64``.
     """
 
     rate_hz: float = 100.0
@@ -84,6 +87,7 @@ class SimulationSettings:
     water_density: float = WATER_DENSITY
     cmd_timeout: float = 1.0
     substeps: int = 1
+    wave_precision: str = "float32"
 
 
 @dataclass(frozen=True)
@@ -218,7 +222,8 @@ def _simulation(raw: Any) -> SimulationSettings:
     key = "simulation"
     d = _mapping(raw, key)
     _only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
-                   "seed", "gravity", "water_density", "cmd_timeout", "substeps"))
+                   "seed", "gravity", "water_density", "cmd_timeout", "substeps",
+                   "wave_precision"))
     rate = _number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = _number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
     diag = _number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
@@ -246,6 +251,7 @@ def _simulation(raw: Any) -> SimulationSettings:
                               unit="kg/m^3"),
         cmd_timeout=_number(d, "cmd_timeout", key, 1.0, 0.0, 3600.0, low_open=True, unit="s"),
         substeps=substeps,
+        wave_precision=_choice(d, "wave_precision", key, "float32", PRECISIONS),
     )
 
 
@@ -489,6 +495,7 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         propulsion=propulsion, rudder=rudder,
         water_density=sim.water_density, gravity=sim.gravity,
         min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
+        wave_precision=sim.wave_precision,
         keel_rate=keel_rate,
         stokes_drift=_flag(d, "stokes_drift", key, False),
     )

@@ -188,7 +188,10 @@ class OceanNode(Node):
         ticks = np.arange(-size / 2, size / 2 + 1e-9, res)
         gx, gy = np.meshgrid(ticks, ticks, indexing="ij")
         grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
-        xy = (centers[:, None, :] + np.round(grid / res)[None] * res).reshape(-1, 2)
+        # one world-aligned grid (it does not swim with the boats), each point once where the
+        # boats' squares overlap
+        cells = np.round((centers[:, None, :] + grid[None]) / res).reshape(-1, 2).astype(np.int64)
+        xy = np.unique(cells, axis=0) * res
         surface = sample(self._sea, xy, t, precision="float32")
         points = np.column_stack([xy, surface.heights, surface.normals]).astype(np.float32)
         return PointCloud2(

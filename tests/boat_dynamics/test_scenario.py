@@ -136,3 +136,11 @@ def test_inertia_products_from_the_hull_or_the_scenario_and_refused_when_impossi
     with pytest.raises(ScenarioError, match=r"boats\[0\]\.inertia_products.*positive definite"):
         parse_scenario({"boats": [{"inertia": [1000, 4000, 4500],
                                    "inertia_products": [0, 3000, 0]}]})
+
+
+def test_wave_precision_reaches_every_boat_and_is_checked():
+    assert parse_scenario({}).boats[0].params.wave_precision == "float32"
+    sc = parse_scenario({"simulation": {"wave_precision": "float64"}})
+    assert sc.simulation.wave_precision == sc.boats[0].params.wave_precision == "float64"
+    with pytest.raises(ScenarioError, match=r"simulation\.wave_precision: 'float16'.*float32"):
+        parse_scenario({"simulation": {"wave_precision": "float16"}})
