@@ -11,6 +11,7 @@ different lengths must be set together (``set_parameters_atomically``).
 
 from __future__ import annotations
 
+import array
 from collections.abc import Callable
 
 import numpy as np
@@ -191,14 +192,19 @@ class OceanNode(Node):
         # one world-aligned grid (it does not swim with the boats), each point once where the
         # boats' squares overlap
         cells = np.round((centers[:, None, :] + grid[None]) / res).reshape(-1, 2).astype(np.int64)
-        xy = np.unique(cells, axis=0) * res
+        low = cells.min(axis=0)
+        span = int(cells[:, 1].max() - low[1]) + 1
+        keys = np.unique((cells[:, 0] - low[0]) * span + (cells[:, 1] - low[1]))  # 1-D: fast
+        xy = np.column_stack([keys // span + low[0], keys % span + low[1]]) * res
         surface = sample(self._sea, xy, t, precision="float32")
         points = np.column_stack([xy, surface.heights, surface.normals]).astype(np.float32)
         return PointCloud2(
             header=Header(stamp=seconds_to_time(self._epoch + t), frame_id=WORLD_FRAME),
             height=1, width=points.shape[0],
             fields=_CLOUD_FIELDS, is_bigendian=False, point_step=24,
-            row_step=24 * points.shape[0], data=points.tobytes(), is_dense=True)
+            row_step=24 * points.shape[0], is_dense=True,
+            # an array.array('B') skips rclpy's per-byte check of a bytes value (~10 ms)
+            data=array.array("B", points.tobytes()))
 
     # ------------------------------------------------------------------ service
 

@@ -166,3 +166,33 @@ def test_diagnostics_and_control_mode_switch_at_run_time(boatsim, probe):
     assert values["control_mode"] == "kinematic"
     assert sim.stop() == 0
     assert "control_mode: now kinematic" in sim.output()
+
+
+def test_surface_cloud_of_overlapping_boats_is_one_grid_without_duplicates():
+    import rclpy
+
+    from ocean_sim.node import OceanNode
+    from ocean_sim.waves import WaveComponent
+    from ocean_sim.waves import WaveField as Sea
+
+    centers = np.array([[0.0, 0.0], [10.3, 0.2], [0.4, -25.0]])
+    sea = Sea((WaveComponent(0.3, 20.0, 0.3, 0.6, 0.0),))
+    rclpy.init()
+    try:
+        node = OceanNode(sea, now=lambda: 0.0, surface_centers=lambda: centers)
+        try:
+            cloud = node.surface_cloud(2.0)
+        finally:
+            node.destroy_node()
+    finally:
+        rclpy.try_shutdown()
+    pts = np.frombuffer(bytes(cloud.data), dtype=np.float32).reshape(-1, 6)
+    cells = np.round(pts[:, :2].astype(float)).astype(int)
+    assert len({tuple(c) for c in cells}) == len(cells) == cloud.width  # each point once
+    assert np.allclose(pts[:, :2], cells, atol=1e-4)  # on the world's 1 m grid
+    # the union of three 41 x 41 squares: [-20, 30] x [-20, 20] with [-20, 20] x [-45, -5]
+    expected = {(x, y) for c in np.round(centers).astype(int)
+                for x in range(c[0] - 20, c[0] + 21) for y in range(c[1] - 20, c[1] + 21)}
+    assert {tuple(c) for c in cells} == expected
+    np.testing.assert_allclose(pts[:, 2], sample_surface(sea, pts[:, :2].astype(float),
+                                                         2.0).heights, atol=1e-4)
