@@ -104,9 +104,9 @@ class HullMesh:
         c = self.corners
         return 0.5 * np.linalg.norm(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]), axis=1)
 
-    @property
+    @cached_property
     def volume(self) -> float:
-        """Enclosed volume, m^3 (divergence theorem; > 0 for outward faces)."""
+        """Enclosed volume, m^3 (divergence theorem; > 0 for outward faces; computed once)."""
         c = self.corners
         return float(np.einsum("ij,ij->i", c[:, 0], np.cross(c[:, 1], c[:, 2])).sum() / 6.0)
 
