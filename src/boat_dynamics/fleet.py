@@ -45,9 +45,6 @@ __all__ = [
     "point_depths",
 ]
 
-_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "gravity", "total")
-
-
 @dataclass(frozen=True)
 class FleetState:
     """The states of B boats at one time ``t``.
@@ -105,21 +102,13 @@ class FleetInputs:
 
 
 @dataclass(frozen=True)
-class FleetForces:
-    """Every source's wrench on B boats, body frames, about the centres of mass ((B, 3) each)."""
-
-    buoyancy: Wrench
-    damping: Wrench
-    drag: Wrench
-    thrust: Wrench
-    rudder: Wrench
-    gravity: Wrench
-    total: Wrench
+class FleetForces(Forces):
+    """:class:`~boat_dynamics.model.Forces` of B boats: each wrench holds (B, 3) arrays."""
 
     def boat(self, i: int) -> Forces:
         """Boat ``i``'s forces."""
         return Forces(*(Wrench(w.force[i].copy(), w.torque[i].copy())
-                        for w in (getattr(self, s) for s in _SOURCES)))
+                        for w in (getattr(self, f.name) for f in dataclasses.fields(self))))
 
 
 def _structure(obj) -> tuple:
