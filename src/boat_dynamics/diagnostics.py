@@ -44,6 +44,8 @@ def active_remedies(params: BoatParams, substeps: int) -> list[str]:
         out.append("linear heave damping")
     if params.damping_quadratic[2] > 0:
         out.append("quadratic heave drag")
+    if np.any(params.damping_decay > 0):
+        out.append("velocity decay (seed notes)")
     if np.any(params.added_mass > 0):
         out.append("added mass")
     if substeps > 1:

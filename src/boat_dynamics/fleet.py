@@ -23,7 +23,7 @@ import numpy as np
 from boat_dynamics.buoyancy import SamplePointBuoyancy, sample_point_wrenches
 from boat_dynamics.control import Pose as _Pose
 from boat_dynamics.control import align_with_normal, apply_mode, pd_gains, stable_pd_torque
-from boat_dynamics.damping import damping
+from boat_dynamics.damping import damping, velocity_decay
 from boat_dynamics.hull_drag import hull_drag
 from boat_dynamics.keel import reflect_off_keel
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy, clip_hulls, pressure_wrenches
@@ -239,6 +239,8 @@ class Fleet:
         self.effective_inertia = self.inertia + added[:, 3:]
         products = np.array([p.inertia_products for p in ps], dtype=float)
         self.inertia_products = products if np.any(products != 0.0) else None
+        decay = np.array([p.damping_decay for p in ps], dtype=float)
+        self.decay = decay if np.any(decay > 0.0) else None
         self.damping_linear = np.array([p.damping_linear for p in ps], dtype=float)
         self.damping_quadratic = np.array([p.damping_quadratic for p in ps], dtype=float)
         self.water_density = np.array([p.water_density for p in ps])
@@ -432,6 +434,8 @@ def fleet_step(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: WaveFi
                            fleet.effective_mass, fleet.effective_inertia, dt,
                            fleet.inertia_products)
     v = reflect_off_keel(v, fleet.keel_rate, dt)
+    if fleet.decay is not None:
+        v, w = velocity_decay(v, w, fleet.decay, dt)
     after = FleetState(state.t + dt, p, q, v, w, throttle, state.control_weight)
     if fleet.special:
         after = _apply_modes(fleet, state, after, sea, dt)

@@ -52,6 +52,9 @@ class BoatParams:
         keel_rate: 1/s, the keel's velocity reflection (0 = off).
         stokes_drift: add the sea's Stokes drift to the water velocity.
         control: the control mode and its settings.
+        damping_decay: (6,) 1/s, the seed notes' (Unity's) per-step velocity decay per body
+            DOF, v <- v / (1 + dt c), applied after each integration step (arcade; not a
+            force, so not in wrench/damping); zeros = off.
         inertia_products: (3,) kg m^2, products of inertia [Ixy, Ixz, Iyz] = integral(x y dm),
             ... about the centre of mass (body axes); the tensor holds them negated.
     """
@@ -74,6 +77,7 @@ class BoatParams:
     stokes_drift: bool = False
     control: ControlSettings = field(default_factory=ControlSettings)
     inertia_products: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    damping_decay: np.ndarray = field(default_factory=lambda: np.zeros(6))
 
 
 @dataclass(frozen=True)

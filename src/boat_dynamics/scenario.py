@@ -427,8 +427,9 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
 
     dk = f"{key}.damping"
     dd = _mapping(d.get("damping"), dk)
-    _only(dd, dk, ("linear", "quadratic", "critical_ratio"))
+    _only(dd, dk, ("linear", "quadratic", "critical_ratio", "decay"))
     linear = _vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
+    decay = _vector(dd, "decay", dk, 6, [0.0] * 6, low=0.0)
     quadratic = _vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0)
     ratio_default = None if "linear" in dd else list(DEFAULT_CRITICAL_RATIO)
     ratio_raw = dd.get("critical_ratio", ratio_default)
@@ -491,8 +492,8 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     params = BoatParams(
         hull=hull, mass=mass, center_of_mass=com, inertia=inertia, inertia_products=products,
         buoyancy=buoyancy,
-        damping_linear=linear, damping_quadratic=quadratic, added_mass=added,
-        propulsion=propulsion, rudder=rudder,
+        damping_linear=linear, damping_quadratic=quadratic, damping_decay=decay,
+        added_mass=added, propulsion=propulsion, rudder=rudder,
         water_density=sim.water_density, gravity=sim.gravity,
         min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
         wave_precision=sim.wave_precision,

@@ -108,3 +108,28 @@ def test_scenario_keys_for_actuators():
         parse_scenario({"boats": [{"rudder": {"model": "torque"}}]})
     with pytest.raises(ScenarioError, match=r"boats\[0\].propulsion.steerable: 'yes'"):
         parse_scenario({"boats": [{"propulsion": {"steerable": "yes"}}]})
+
+
+def test_notes_velocity_decay_is_v_over_1_plus_c_dt_per_step():
+    from dataclasses import replace
+
+    from boat_dynamics.scenario import parse_scenario
+
+    sc = parse_scenario({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6,
+                                                "decay": [0.4, 0, 0, 0, 0, 0.8]}}]})
+    params, rest = sc.boats[0].params, sc.boats[0].initial
+    # separately: a yaw rate turns a body-frame surge velocity (w x v)
+    gliding = replace(rest, velocity=np.array([2.0, 0.0, 0.0]))
+    spinning = replace(rest, angular_velocity=np.array([0.0, 0.0, 0.3]))
+    dt, n = 0.01, 300
+    for _ in range(n):
+        gliding = step(params, gliding, BoatInputs(0.0, 0.0), WaveField(), dt)
+        spinning = step(params, spinning, BoatInputs(0.0, 0.0), WaveField(), dt)
+    assert gliding.velocity[0] == pytest.approx(2.0 / (1 + 0.4 * dt) ** n, rel=1e-9)
+    assert spinning.angular_velocity[2] == pytest.approx(0.3 / (1 + 0.8 * dt) ** n, rel=1e-9)
+    # off by default, and refused when negative
+    assert np.all(parse_scenario({}).boats[0].params.damping_decay == 0.0)
+    from boat_dynamics.scenario import ScenarioError
+
+    with pytest.raises(ScenarioError, match=r"damping\.decay"):
+        parse_scenario({"boats": [{"damping": {"decay": [0, 0, 0, 0, 0, -1]}}]})
