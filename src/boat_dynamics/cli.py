@@ -49,7 +49,7 @@ def _parser() -> argparse.ArgumentParser:
                           "replay gives the same result on any machine")
     run.add_argument("--processes", action="store_true",
                      help="run the ocean and each boat's dynamics in processes of their own "
-                          "(real time only)")
+                          "(real time only; --record adds a recorder process)")
     node = verbs.add_parser("_node", help=argparse.SUPPRESS)
     node.add_argument("role", choices=("ocean", "boat"))
     node.add_argument("scenario")
@@ -181,14 +181,20 @@ def _run(args: argparse.Namespace) -> int:
         return run(scenario, options, status=open(os.devnull, "w") if args.quiet
                    else sys.stderr)
     if args.processes:
-        if args.fast or args.record or not scenario.simulation.realtime:
-            print("boatsim: error: --processes runs in real time, without --fast or --record "
-                  "(lockstep and recording across processes are not implemented yet)",
+        if args.fast or args.lockstep or not scenario.simulation.realtime:
+            print("boatsim: error: --processes runs in real time, without --fast or --lockstep "
+                  "(one simulation clock across processes is not implemented yet)",
                   file=sys.stderr)
             return 2
+        from boat_dynamics.recording import RecordError
         from boat_dynamics.simulation import run_processes
 
-        return run_processes(scenario, str(path), RunOptions(duration=args.duration))
+        try:
+            return run_processes(scenario, str(path), RunOptions(duration=args.duration,
+                                                                 record=args.record))
+        except RecordError as exc:
+            print(f"boatsim: error: {exc}", file=sys.stderr)
+            return 2
     if args.lockstep and not args.fast:
         print("boatsim: error: --lockstep needs --fast (a real-time run follows the wall "
               "clock)", file=sys.stderr)

@@ -13,6 +13,7 @@ import sys
 import threading
 import time
 from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import TextIO
 
 import rclpy
@@ -22,7 +23,7 @@ from rclpy.signals import SignalHandlerOptions
 
 from boat_dynamics.boat import reference_pose
 from boat_dynamics.node import DynamicsNode, SimClock
-from boat_dynamics.recording import BagWriter, TopicRecorder
+from boat_dynamics.recording import BagWriter, RecordError, TopicRecorder
 from boat_dynamics.rigid_body import quat_to_euler
 from boat_dynamics.scenario import Scenario
 from ocean_sim.node import OceanNode
@@ -262,23 +263,36 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     """`boatsim run --processes`: the ocean and each boat's dynamics in a process of its own.
 
     The processes share an epoch (the wall-clock time of simulation time 0, a second ahead so
-    that they all start on it) and pace themselves to real time; the parent forwards SIGINT
-    and SIGTERM and returns 0 when every child exited 0. Only the first boat's process shows
-    the status line.
+    that they all start on it; 2.5 s with ``--record``, so that the recorder has matched the
+    publishers by then) and pace themselves to real time; the parent forwards SIGINT and
+    SIGTERM and returns 0 when every child exited 0. Only the first boat's process shows the
+    status line. With ``options.record``, a ``boatsim record`` process records every topic and
+    is stopped (bag finalized) after the simulation processes have exited.
     """
     import subprocess
 
-    epoch = time.time() + 1.0
+    epoch = time.time() + (2.5 if options.record else 1.0)
     common = [path, "--epoch", repr(epoch)]
     if options.duration is not None:
         common += ["--duration", repr(options.duration)]
     commands = [["ocean", *common, "--quiet"]]
     for i, boat in enumerate(scenario.boats):
         commands.append(["boat", *common, "--boat", boat.name, *(["--quiet"] if i else [])])
-    children = [subprocess.Popen([sys.executable, "-m", "boat_dynamics", "_node", *c])
-                for c in commands]
+    cli = [sys.executable, "-m", "boat_dynamics"]
+    recorder = None
+    if options.record:
+        if Path(options.record).exists():  # refused here, before any process starts
+            raise RecordError(f"{Path(options.record)} already exists; choose a new directory "
+                              "for the bag")
+        recorder = subprocess.Popen([*cli, "record", "-o", options.record],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    children = [subprocess.Popen([*cli, "_node", *c]) for c in commands]
     print(f"boatsim: started {len(children)} processes (ocean + {len(scenario.boats)} boats): "
-          f"pids {' '.join(str(c.pid) for c in children)}", file=status)
+          f"pids {' '.join(str(c.pid) for c in children)}"
+          + (f"; recording to {options.record} (pid {recorder.pid})" if recorder else ""),
+          file=status)
+    if recorder is not None:
+        children.append(recorder)  # stopped last: see below
 
     def forward(signum, _frame):
         for c in children:
@@ -289,12 +303,16 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     try:
         codes = []
         for c in children:
+            if c is recorder and recorder.poll() is None:
+                recorder.send_signal(signal.SIGINT)  # the simulation is over: finalize the bag
             while True:
                 try:
                     codes.append(c.wait())
                     break
                 except KeyboardInterrupt:
                     forward(signal.SIGINT, None)
+        if recorder is not None:
+            print(f"boatsim: recorded to {options.record}", file=status)
         return 0 if all(code == 0 for code in codes) else 1
     finally:
         for c in children:

@@ -295,10 +295,30 @@ def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
     assert "started 4 processes" in out and "Traceback" not in out
 
 
-def test_processes_refuses_fast_and_record(boatsim, tmp_path):
+def test_processes_refuses_fast_and_an_existing_bag(boatsim, tmp_path):
     sim = boatsim("run", "--processes", "--fast")
     assert sim.wait(timeout=30) == 2
     assert "--processes runs in real time" in sim.output()
+    sim = boatsim("run", "--processes", "--record", str(tmp_path))
+    assert sim.wait(timeout=30) == 2
+    assert f"{tmp_path} already exists" in sim.output() and "Traceback" not in sim.output()
+
+
+def test_processes_record_every_topic_of_every_process(boatsim, tmp_path):
+    from boat_dynamics.bags import read_bag
+
+    bag = tmp_path / "bag"
+    sim = boatsim("run", "scenarios/multi_boat.yaml", "--processes", "--duration", "5",
+                  "--record", str(bag))
+    assert sim.wait(timeout=90) == 0, sim.output()
+    assert f"recorded to {bag}" in sim.output()
+    msgs = read_bag(bag, ["/alpha/odom", "/bravo/odom", "/charlie/odom", "/ocean/wave_field",
+                          "/diagnostics"])
+    for name in ("alpha", "bravo", "charlie"):  # 50 Hz for 5 s, each from its own process
+        stamps = [t for t, _ in msgs[f"/{name}/odom"]]
+        assert len(stamps) >= 240, (name, len(stamps))
+        assert max(np.diff(stamps)) < 0.05e9  # nothing lost once recording
+    assert len(msgs["/ocean/wave_field"]) >= 1  # latched, from the ocean process
 
 
 def test_processes_ctrl_c_stops_every_child(boatsim, probe):
