@@ -122,6 +122,7 @@ class DynamicsNode(Node):
         self.declare_parameter("cmd_timeout", sim.cmd_timeout, ParameterDescriptor(
             description="s without a cmd_thrust message after which thrust is set to 0.",
             floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
+        self._cmd_timeout = self.get_parameter("cmd_timeout").value  # read every step: cached
         self._rate = sim.rate_hz
         self._substeps = sim.substeps
         self._dt = 1.0 / (sim.rate_hz * sim.substeps)
@@ -154,6 +155,7 @@ class DynamicsNode(Node):
                             f"{', '.join(CONTROL_MODES)}; switching ramps in over "
                             "control.transition s, without a jump."))
         self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.add_post_set_parameters_callback(self._after_set_parameters)
 
     # ------------------------------------------------------------------ set-up
 
@@ -236,6 +238,12 @@ class DynamicsNode(Node):
                                    f"{control.transition:g} s)")
         return SetParametersResult(successful=True)
 
+    def _after_set_parameters(self, params) -> None:
+        """Keep the cached copies of parameters read every step (called once they are set)."""
+        for p in params:
+            if p.name == "cmd_timeout":
+                self._cmd_timeout = float(p.value)
+
     def _on_wave_field(self, msg: WaveFieldMsg) -> None:
         try:
             sea = wave_field_from_msg(msg)
@@ -297,7 +305,7 @@ class DynamicsNode(Node):
         t = self._sim_clock.t
         if boat.spec.commands is not None:
             return boat.spec.commands.at(t)
-        timeout = self.get_parameter("cmd_timeout").value
+        timeout = self._cmd_timeout
         if not boat.timed_out and t - boat.last_thrust_t > timeout:
             boat.timed_out = True
             if boat.throttle != 0.0:

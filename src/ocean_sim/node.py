@@ -95,6 +95,8 @@ class OceanNode(Node):
             description="Spacing of the /ocean/surface grid points, m.",
             floating_point_range=_range(0.05, 100.0)))
         self.add_on_set_parameters_callback(self._on_set_parameters)
+        self._cloud_rate = self.get_parameter("surface.rate_hz").value  # read every step
+        self.add_post_set_parameters_callback(self._after_set_parameters)
         self._field_pub = TappedPublisher(self, WaveFieldMsg, WAVE_FIELD, WAVE_FIELD_QOS, tap)
         self._cloud_pub = TappedPublisher(self, PointCloud2, SURFACE_CLOUD, SURFACE_QOS, tap)
         self._next_cloud_t = 0.0
@@ -162,6 +164,12 @@ class OceanNode(Node):
             self.get_logger().info(f"new {self._describe(sea)}")
         return SetParametersResult(successful=True)
 
+    def _after_set_parameters(self, params: list[Parameter]) -> None:
+        """Keep the cached copies of parameters read every step (called once they are set)."""
+        for p in params:
+            if p.name == "surface.rate_hz":
+                self._cloud_rate = float(p.value)
+
     def publish_wave_field(self) -> None:
         """(Re)publish the current sea state on /ocean/wave_field, stamped at simulation time 0.
 
@@ -174,7 +182,7 @@ class OceanNode(Node):
 
     def advance(self, t: float) -> None:
         """Called by the runner after each physics step: publish /ocean/surface when due."""
-        rate = self.get_parameter("surface.rate_hz").value
+        rate = self._cloud_rate
         if rate <= 0.0 or t + 1e-9 < self._next_cloud_t:
             return
         self._next_cloud_t = t + 1.0 / rate

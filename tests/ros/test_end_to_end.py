@@ -225,7 +225,7 @@ def test_existing_record_directory_is_refused(boatsim, tmp_path):
     assert "already exists" in sim.output()
 
 
-def test_thrust_stops_after_cmd_timeout_without_commands(boatsim, probe, tmp_path):
+def test_thrust_stops_after_cmd_timeout_set_at_run_time(boatsim, probe, tmp_path):
     flat = tmp_path / "flat.yaml"
     flat.write_text("boats:\n  - damping: {linear: [500, 4000, 12000, 6000, 12000, 3000]}\n")
     sim = boatsim("run", str(flat), "--fast")
@@ -234,6 +234,16 @@ def test_thrust_stops_after_cmd_timeout_without_commands(boatsim, probe, tmp_pat
     thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
     probe.spin_until(lambda: len(odoms) > 5, 30.0, "/odom")
     probe.spin_until(lambda: thrust.get_subscription_count() > 0, 10.0, "command subscriber")
+    # cmd_timeout changed at run time through the parameter service: 1 s -> 0.5 s
+    from rcl_interfaces.msg import Parameter as ParameterMsg
+    from rcl_interfaces.msg import ParameterType, ParameterValue
+    from rcl_interfaces.srv import SetParameters
+
+    client = probe.node.create_client(SetParameters, "/boat_dynamics/set_parameters")
+    result = probe.call(client, SetParameters.Request(parameters=[ParameterMsg(
+        name="cmd_timeout", value=ParameterValue(type=ParameterType.PARAMETER_DOUBLE,
+                                                 double_value=0.5))])).results[0]
+    assert result.successful, result.reason
     thrust.publish(Float64(data=1.0))  # once, then silence
 
     def stamp(o):
@@ -245,12 +255,12 @@ def test_thrust_stops_after_cmd_timeout_without_commands(boatsim, probe, tmp_pat
     pushed = [t for t, u in speeds if u > 1e-6]
     assert pushed, "the command never reached the boat"
     peak_t, peak = max(speeds, key=lambda s: s[1])
-    # full thrust for cmd_timeout = 1 s from rest: u = T/b (1 - exp(-b t / m)) = 0.44 m/s
-    assert peak == pytest.approx(2000 / 500 * (1 - math.exp(-500 * 1.0 / 4100)), rel=0.05)
-    assert peak_t - pushed[0] == pytest.approx(1.0, abs=0.05)
+    # full thrust for cmd_timeout = 0.5 s from rest: u = T/b (1 - exp(-b t / m)) = 0.23 m/s
+    assert peak == pytest.approx(2000 / 500 * (1 - math.exp(-500 * 0.5 / 4100)), rel=0.05)
+    assert peak_t - pushed[0] == pytest.approx(0.5, abs=0.05)
     assert speeds[-1][1] < 0.5 * peak  # then drag slows it down
     assert sim.stop() == 0
-    assert "/cmd_thrust: no command for 1 s; thrust set to 0" in sim.output()
+    assert "/cmd_thrust: no command for 0.5 s; thrust set to 0" in sim.output()
 
 
 def test_several_boats_each_in_its_namespace(boatsim, probe):

@@ -179,9 +179,23 @@ def test_surface_cloud_of_overlapping_boats_is_one_grid_without_duplicates():
     sea = Sea((WaveComponent(0.3, 20.0, 0.3, 0.6, 0.0),))
     rclpy.init()
     try:
-        node = OceanNode(sea, now=lambda: 0.0, surface_centers=lambda: centers)
+        from rclpy.parameter import Parameter
+
+        from boat_msgs_py.tap import Tap
+
+        published = []
+        node = OceanNode(sea, now=lambda: 0.0, surface_centers=lambda: centers,
+                         tap=Tap(lambda topic, _type, _data: published.append(topic)))
         try:
             cloud = node.surface_cloud(2.0)
+            node.advance(0.0)
+            assert published.count(names.SURFACE_CLOUD) == 1
+            node.advance(0.5)  # 1 Hz: not due yet
+            node.advance(1.0)
+            assert published.count(names.SURFACE_CLOUD) == 2
+            assert node.set_parameters([Parameter("surface.rate_hz", value=0.0)])[0].successful
+            node.advance(5.0)  # off
+            assert published.count(names.SURFACE_CLOUD) == 2
         finally:
             node.destroy_node()
     finally:
