@@ -61,9 +61,13 @@ def boat_report(params: BoatParams, state: BoatState, sea: WaveField,
     return fleet_reports(Fleet([params]), FleetState.stack([state]), sea, substeps)[0]
 
 
-def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField,
-                  substeps: int = 1) -> list[BoatReport]:
-    """:func:`boat_report` of every boat of a fleet, with one surface query and one clip."""
+def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField, substeps: int = 1,
+                  remedies: list[str] | None = None) -> list[BoatReport]:
+    """:func:`boat_report` of every boat of a fleet, with one surface query and one clip.
+
+    ``remedies``: each boat's remedies line ("; "-joined :func:`active_remedies`), if known
+    (they depend on the parameters only).
+    """
     rot = rotation_matrix(state.orientation)
     volumes = np.zeros(fleet.count)
     values: list[list] = [[] for _ in range(fleet.count)]
@@ -99,8 +103,10 @@ def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField,
     for k, params in enumerate(fleet.params):
         model = params.buoyancy
         hull_volume = model.mesh.volume if isinstance(model, MeshBuoyancy) else model.volume
+        line = (remedies[k] if remedies is not None
+                else "; ".join(active_remedies(params, substeps)))
         entries = [values[k][0], ("control_mode", params.control.mode), *values[k][1:],
-                   ("remedies", "; ".join(active_remedies(params, substeps)))]
+                   ("remedies", line)]
         ratio = volumes[k] / hull_volume
         if ratio >= 0.999:
             out.append(BoatReport(1, "fully submerged", tuple(entries)))

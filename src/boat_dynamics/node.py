@@ -24,7 +24,7 @@ from std_msgs.msg import Float64, Float64MultiArray
 from boat_dynamics.boat import BoatState, reference_pose
 from boat_dynamics.commands import check_command
 from boat_dynamics.control import CONTROL_MODES
-from boat_dynamics.diagnostics import fleet_reports
+from boat_dynamics.diagnostics import active_remedies, fleet_reports
 from boat_dynamics.fleet import (
     Fleet,
     FleetForces,
@@ -139,6 +139,7 @@ class DynamicsNode(Node):
         self._fleet = Fleet([spec.params for spec in scenario.boats])
         self._state = FleetState.stack([spec.initial for spec in scenario.boats])
         self._forces: FleetForces | None = None  # acting during the last step
+        self._remedies: list[str] | None = None  # per boat, for /diagnostics (params only)
         self._clock_template = clock_template()
         self.boats = [self._make_boat(spec, i) for i, spec in enumerate(scenario.boats)]
         self.commands_received = 0
@@ -234,6 +235,7 @@ class DynamicsNode(Node):
             weights[boat.index] = 0.0
             self._state = replace(self._state, control_weight=weights)
             self._fleet = Fleet([b.spec.params for b in self.boats])
+            self._remedies = None  # the mode is among them
             self.get_logger().info(f"{p.name}: now {p.value} (taking over in "
                                    f"{control.transition:g} s)")
         return SetParametersResult(successful=True)
@@ -378,7 +380,11 @@ class DynamicsNode(Node):
 
     def _publish_diagnostics(self, stamp) -> None:
         """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""
-        reports = fleet_reports(self._fleet, self._state, self.sea, self._substeps)
+        if self._remedies is None or len(self._remedies) != len(self.boats):
+            self._remedies = ["; ".join(active_remedies(b.spec.params, self._substeps))
+                              for b in self.boats]
+        reports = fleet_reports(self._fleet, self._state, self.sea, self._substeps,
+                                remedies=self._remedies)
         self._diag_pub.publish(diagnostic_array(stamp, [
             (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message, r.values)
             for boat, r in zip(self.boats, reports, strict=True)]))
