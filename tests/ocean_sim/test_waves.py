@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from ocean_sim.waves import (
@@ -171,6 +171,7 @@ def test_inversion_residual_below_1mm_for_admissible_seas(sea, t, seed):
 
 @settings(max_examples=60, deadline=None)
 @given(sea=admissible_seas(max_ak=0.45), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16))
+@example(sea=WaveField((WaveComponent(0.1432394487827058, 2.0, 0.0, 1.0, 1.0),)), t=1.5, seed=0)
 def test_float32_queries_agree_with_float64_to_a_tenth_of_a_millimetre(sea, t, seed):
     # physically possible waves: a k <= 0.45 (Stokes limit H / lambda = 1/7); the float32
     # phase error grows as 2^-24 * sum(a k) * (distance from the batch centre)
@@ -178,7 +179,9 @@ def test_float32_queries_agree_with_float64_to_a_tenth_of_a_millimetre(sea, t, s
     a = sample_surface(sea, xy, t)
     b = sample_surface(sea, xy, t, precision="float32")
     assert np.abs(a.heights - b.heights).max() < 1e-4
-    assert np.abs(a.normals - b.normals).max() < 1e-4
+    # normals turn fastest at a steep crest: curvature k (k a) / (1 - Q k a)^2, 4.7 /m for
+    # a = 0.143 m, lambda = 2 m, Q = 1 (found by hypothesis: 1.4e-4 rad there). 5e-4 rad is 0.03 deg
+    assert np.abs(a.normals - b.normals).max() < 5e-4
     assert np.abs(displace(sea, b.rest_xy, t)[:, :2] - xy).max() < 1e-4
 
 
