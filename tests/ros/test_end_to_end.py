@@ -297,9 +297,12 @@ def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
     probe.spin_until(
         lambda: expected <= {n for n, _ in probe.node.get_node_names_and_namespaces()},
         20.0, f"node names {sorted(expected)}")
-    # one clock: the processes' stamps agree within a few steps
+    # one clock: every process's stamps lie on the same 20 ms grid from the shared epoch, and
+    # the processes keep up with each other (loosely: a loaded machine delays one a little)
     stamps = [time_to_seconds(b[-1].header.stamp) for b in odoms.values()]
-    assert max(stamps) - min(stamps) < 0.2
+    steps = [(s - stamps[0]) / 0.02 for s in stamps]
+    assert all(abs(k - round(k)) < 1e-3 for k in steps), steps
+    assert max(stamps) - min(stamps) < 1.0
     assert sim.wait(timeout=60) == 0
     out = sim.output()
     assert "started 4 processes" in out and "Traceback" not in out
@@ -324,10 +327,13 @@ def test_processes_record_every_topic_of_every_process(boatsim, tmp_path):
     assert f"recorded to {bag}" in sim.output()
     msgs = read_bag(bag, ["/alpha/odom", "/bravo/odom", "/charlie/odom", "/ocean/wave_field",
                           "/diagnostics"])
-    for name in ("alpha", "bravo", "charlie"):  # 50 Hz for 5 s, each from its own process
-        stamps = [t for t, _ in msgs[f"/{name}/odom"]]
-        assert len(stamps) >= 240, (name, len(stamps))
-        assert max(np.diff(stamps)) < 0.05e9  # nothing lost once recording
+    for name in ("alpha", "bravo", "charlie"):  # 50 Hz, each from its own process
+        stamps = np.array([t for t, _ in msgs[f"/{name}/odom"]])
+        # A process that starts late (a loaded machine) joins the shared clock where it is, so
+        # the first stamps may be missing; from the first recorded one on, nothing is lost.
+        assert len(stamps) >= 100, (name, len(stamps))
+        assert np.all(np.diff(stamps) == pytest.approx(0.02e9, abs=1e3)), name
+        assert stamps[-1] - stamps[0] >= 1.98e9  # at least the last 2 s of the 5 s run
     assert len(msgs["/ocean/wave_field"]) >= 1  # latched, from the ocean process
 
 
