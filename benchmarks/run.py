@@ -123,6 +123,14 @@ def _fleet(n: int) -> dict:
                       for i in range(n)]}
 
 
+def _quiet_nodes() -> None:
+    """No per-boat start-up log lines between the figures."""
+    import rclpy.logging
+
+    for name in ("boat_dynamics", "ocean"):
+        rclpy.logging.set_logger_level(name, rclpy.logging.LoggingSeverity.WARN)
+
+
 def bench_run(seconds: float, boats: int) -> None:
     """Real-time factor of the whole in-process simulation with --fast (mesh boats).
 
@@ -132,12 +140,9 @@ def bench_run(seconds: float, boats: int) -> None:
     import io
     import re
 
-    import rclpy.logging
-
     from boat_dynamics.simulation import RunOptions, run
 
-    for name in ("boat_dynamics", "ocean"):  # no per-boat start-up lines in the figures
-        rclpy.logging.set_logger_level(name, rclpy.logging.LoggingSeverity.WARN)
+    _quiet_nodes()
     sc = parse_scenario(_fleet(boats)) if boats > 1 else load_scenario(default_scenario_path())
     loops, totals = [], []
     for _ in range(3):  # this machine's speed varies between runs: best and range of three
@@ -151,11 +156,61 @@ def bench_run(seconds: float, boats: int) -> None:
           f"{max(totals):.2f} with set-up)")
 
 
+def bench_phases(seconds: float, boats: int) -> None:
+    """Where a step of `run --fast` goes: wall time per step of each phase (timed by wrappers).
+
+    The wrappers cost about a microsecond per call; the figures are for finding the next thing
+    to speed up, the real-time factor above is the figure that counts.
+    """
+    import io
+
+    from boat_dynamics import node as node_module
+    from boat_dynamics import simulation
+
+    _quiet_nodes()
+    spent: dict[str, float] = {}
+
+    def timed(owner, name, label):
+        original = getattr(owner, name)
+
+        def wrapper(*args, **kwargs):
+            t0 = time.perf_counter()
+            try:
+                return original(*args, **kwargs)
+            finally:
+                spent[label] = spent.get(label, 0.0) + time.perf_counter() - t0
+
+        setattr(owner, name, wrapper)
+        return original
+
+    patches = [
+        (node_module, "fleet_step", "physics (fleet_step)"),
+        (node_module, "fleet_reports", "/diagnostics reports"),
+        (node_module.DynamicsNode, "_publish_states", "odom, pose, twist"),
+        (node_module.DynamicsNode, "_publish_wrenches", "wrench/*"),
+        (node_module.DynamicsNode, "publish_outputs", "all publishing"),
+        (simulation.OceanNode, "advance", "/ocean/surface"),
+        (simulation, "_spin_pending", "ROS callbacks (spin)"),
+    ]
+    originals = [(owner, name, timed(owner, name, label)) for owner, name, label in patches]
+    try:
+        run_options = simulation.RunOptions(fast=True, duration=seconds)
+        simulation.run(parse_scenario(_fleet(boats)), run_options, status=io.StringIO())
+    finally:
+        for owner, name, original in originals:
+            setattr(owner, name, original)
+    steps = seconds * 100.0
+    print(f"  {boats} boats, {seconds:g} s: wall time per 10 ms step")
+    for label, total in spent.items():
+        print(f"    {label:<24} {total / steps * 1e6:8.1f} us")
+
+
 def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--run-seconds", type=float, default=20.0)
-    parser.add_argument("--only", choices=("waves", "boat", "run"), help="one group only")
+    parser.add_argument("--only", choices=("waves", "boat", "run", "phases"),
+                        help="one group only")
     args = parser.parse_args()
     if args.only in (None, "waves"):
         bench_waves()
@@ -166,6 +221,9 @@ def main() -> None:
         for boats, seconds in ((1, args.run_seconds), (10, args.run_seconds / 4),
                                (100, args.run_seconds / 20)):
             bench_run(seconds, boats)
+    if args.only in (None, "phases"):
+        print("== where a step goes, boatsim run --fast with 10 mesh boats")
+        bench_phases(args.run_seconds / 2, 10)
 
 
 if __name__ == "__main__":
