@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.wrench import Wrench, cross, sum_by_owner
+from boat_dynamics.wrench import Wrench, cross, per_element, sum_by_owner
 
 __all__ = ["SamplePointBuoyancy", "sample_point_buoyancy", "sample_point_wrenches"]
 
@@ -127,10 +127,10 @@ def sample_point_wrenches(
     """
     points_per_boat = np.bincount(owner, minlength=count)
     share = (rho_g * model.volume / points_per_boat)[owner]
-    max_depth = _per_point(model.max_depth, owner)
+    max_depth = per_element(model.max_depth, owner)
     submerged = np.clip(depths, 0.0, max_depth)
     if model.curve == "exponential":
-        alpha = _per_point(model.alpha, owner)
+        alpha = per_element(model.alpha, owner)
         fraction = (1.0 - np.exp(-alpha * submerged / max_depth)) / (1.0 - np.exp(-alpha))
     else:
         fraction = submerged / max_depth
@@ -138,14 +138,14 @@ def sample_point_wrenches(
     if model.depth_scale:
         magnitude = magnitude * np.clip(depths, 0.0, 1.0)
     if model.force_clamp is not None:
-        magnitude = np.minimum(magnitude, _per_point(model.force_clamp, owner) * share)
+        magnitude = np.minimum(magnitude, per_element(model.force_clamp, owner) * share)
     if model.direction == "normal" and normals is not None:
         forces_world = magnitude[:, None] * normals
     else:
         forces_world = np.zeros((magnitude.shape[0], 3))
         forces_world[:, 2] = magnitude
     if np.any(np.asarray(model.point_damping) > 0.0) and point_velocities is not None:
-        c = _per_point(np.asarray(model.point_damping) * mass / points_per_boat, owner)
+        c = per_element(np.asarray(model.point_damping) * mass / points_per_boat, owner)
         forces_world = forces_world - ((depths > 0.0) * c)[:, None] * point_velocities
     arms = model.points - center_of_mass[owner]
     arms[:, 2] += submerged / 2.0
@@ -154,7 +154,3 @@ def sample_point_wrenches(
                         owner, count)
     return sums[:, :3], sums[:, 3:]
 
-
-def _per_point(value, owner: np.ndarray):
-    """A per-boat parameter ((B,) array) per point, or the scalar shared by all."""
-    return np.asarray(value)[owner] if np.ndim(value) else value

@@ -9,10 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.fleet import Fleet, FleetState, group_depths
-from boat_dynamics.mesh_buoyancy import MeshBuoyancy, clip_hulls, hydrostatics_of
+from boat_dynamics.fleet import Fleet, FleetState, clip_group, group_depths, reference_points
+from boat_dynamics.mesh_buoyancy import MeshBuoyancy, hydrostatics_of
 from boat_dynamics.model import BoatParams, BoatState
-from boat_dynamics.rigid_body import rotation_matrix
 from ocean_sim.waves import WaveField
 
 __all__ = ["BoatReport", "active_remedies", "boat_report", "fleet_reports"]
@@ -68,7 +67,7 @@ def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField, substeps: int
     ``remedies``: each boat's remedies line ("; "-joined :func:`active_remedies`), if known
     (they depend on the parameters only).
     """
-    rot = rotation_matrix(state.orientation)
+    rot, _ = reference_points(fleet, state)
     volumes = np.zeros(fleet.count)
     values: list[list] = [[] for _ in range(fleet.count)]
     for g, world, depths in group_depths(fleet, state, sea):
@@ -77,10 +76,8 @@ def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField, substeps: int
         draft = np.full(count, -np.inf)
         np.maximum.at(draft, g.owner, depths)
         if g.mesh is not None:
-            normals = np.einsum("fij,fj->fi", rot[i][g.face_owner], g.face_normals)
-            wet = clip_hulls(g.faces, normals, world, depths)
-            reports = hydrostatics_of(wet, g.face_owner[wet.faces], count, rot[i],
-                                      state.position[i], draft)
+            wet, owner = clip_group(g, rot[i], world, depths)
+            reports = hydrostatics_of(wet, owner, count, rot[i], state.position[i], draft)
             for k, hs in zip(i, reports, strict=True):
                 volumes[k] = hs.submerged_volume
                 values[k] = [("buoyancy_model", "mesh"),

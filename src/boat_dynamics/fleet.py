@@ -26,7 +26,12 @@ from boat_dynamics.control import align_with_normal, apply_mode, pd_gains, stabl
 from boat_dynamics.damping import damping, velocity_decay
 from boat_dynamics.hull_drag import hull_drag
 from boat_dynamics.keel import reflect_off_keel
-from boat_dynamics.mesh_buoyancy import MeshBuoyancy, clip_hulls, pressure_wrenches
+from boat_dynamics.mesh_buoyancy import (
+    MeshBuoyancy,
+    SubmergedTriangles,
+    clip_hulls,
+    pressure_wrenches,
+)
 from boat_dynamics.model import BoatInputs, BoatParams, BoatState, Forces
 from boat_dynamics.propulsion import lagged_throttle, thrust
 from boat_dynamics.rigid_body import integrate, rotation_matrix
@@ -39,10 +44,11 @@ __all__ = [
     "FleetForces",
     "FleetInputs",
     "FleetState",
+    "clip_group",
     "fleet_forces",
     "fleet_step",
     "group_depths",
-    "point_depths",
+    "reference_points",
 ]
 
 @dataclass(frozen=True)
@@ -257,8 +263,7 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
         The forces, and (B, 3) the surface normal at each boat's hull reference point.
     """
     b = fleet.count
-    rot = rotation_matrix(state.orientation)  # (B, 3, 3)
-    ref = state.position - np.einsum("bij,bj->bi", rot, fleet.center_of_mass)
+    rot, ref = reference_points(fleet, state)
     # one surface query per wave filter, for every group's points and reference points
     queries = _world_points(fleet, rot, ref)
     surfaces = _sample(sea, state.t, queries, ref)
@@ -288,31 +293,38 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
     return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
 
 
+def reference_points(fleet: Fleet, state: FleetState) -> tuple[np.ndarray, np.ndarray]:
+    """(B, 3, 3) body-to-world rotations and (B, 3) m world hull reference points."""
+    rot = rotation_matrix(state.orientation)
+    return rot, state.position - np.einsum("bij,bj->bi", rot, fleet.center_of_mass)
+
+
+def clip_group(g: _Group, rot: np.ndarray, world: np.ndarray, depths: np.ndarray
+               ) -> tuple[SubmergedTriangles, np.ndarray]:
+    """The wetted triangles of a mesh group's hulls and the boat (0..G-1) of each.
+
+    Args:
+        g: a mesh group.
+        rot: (G, 3, 3) the group's body-to-world rotations.
+        world: (E, 3) m, its hull vertices, world frame.
+        depths: (E,) m, their depths below the surface.
+    """
+    normals = np.einsum("fij,fj->fi", rot[g.face_owner], g.face_normals)
+    wet = clip_hulls(g.faces, normals, world, depths)
+    return wet, g.face_owner[wet.faces]
+
+
 def group_depths(fleet: Fleet, state: FleetState, sea: WaveField
                  ) -> list[tuple[_Group, np.ndarray, np.ndarray]]:
     """Per group: (group, (E, 3) m world vertices / points, (E,) m their depths now).
 
     One surface query for the whole fleet (per wave filter).
     """
-    rot = rotation_matrix(state.orientation)
-    ref = state.position - np.einsum("bij,bj->bi", rot, fleet.center_of_mass)
+    rot, ref = reference_points(fleet, state)
     queries = _world_points(fleet, rot, ref)
     return [(g, world, surface.heights - world[:, 2])
             for (g, world), (surface, _) in zip(queries, _sample(sea, state.t, queries, ref),
                                                 strict=True)]
-
-
-def point_depths(fleet: Fleet, state: FleetState, sea: WaveField) -> list[np.ndarray]:
-    """Each boat's hull-vertex (mesh) or sample-point depths below the surface now, m.
-
-    Returns one (E_b,) array per boat.
-    """
-    out: list = [None] * fleet.count
-    for g, _, depths in group_depths(fleet, state, sea):
-        bounds = np.searchsorted(g.owner, np.arange(g.index.shape[0] + 1))
-        for k, i in enumerate(g.index):
-            out[i] = depths[bounds[k]:bounds[k + 1]]
-    return out
 
 
 def _world_points(fleet: Fleet, rot: np.ndarray, ref: np.ndarray) -> list:
@@ -364,9 +376,7 @@ def _buoyancy_and_drag(fleet: Fleet, g: _Group, state: FleetState, rot: np.ndarr
     rot_g = rot[i]
     rho_g = fleet.water_density[i] * fleet.gravity[i]
     if g.mesh is not None:
-        normals = np.einsum("fij,fj->fi", rot_g[g.face_owner], g.face_normals)
-        wet = clip_hulls(g.faces, normals, world, depths)
-        owner = g.face_owner[wet.faces]
+        wet, owner = clip_group(g, rot_g, world, depths)
         force, torque = pressure_wrenches(wet, owner, count, state.position[i], rho_g)
         _add_world(sums["buoyancy"], i, rot_g, force, torque)
         drag = g.mesh.drag

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from boat_dynamics.wrench import cross, sum_by_owner
+from boat_dynamics.wrench import cross, per_element, sum_by_owner
 
 if TYPE_CHECKING:
     from boat_dynamics.mesh_buoyancy import SubmergedTriangles
@@ -72,11 +72,6 @@ def friction_coefficient(speed, length, kinematic_viscosity):
     return float(cf) if cf.ndim == 0 else cf
 
 
-def _per(value, owner: np.ndarray):
-    """A per-hull parameter ((B,) array) per triangle, or the scalar shared by all."""
-    return np.asarray(value)[owner] if np.ndim(value) else value
-
-
 def hull_drag(model: HullDrag, wet: SubmergedTriangles, owner: np.ndarray, count: int,
               velocities: np.ndarray, speed: np.ndarray, length: np.ndarray,
               water_density: np.ndarray, center_of_mass_world: np.ndarray
@@ -106,19 +101,19 @@ def hull_drag(model: HullDrag, wet: SubmergedTriangles, owner: np.ndarray, count
         vn = np.einsum("ij,ij->i", velocities, normals)
         vt = velocities - vn[:, None] * normals
         mag = np.sqrt(np.einsum("ij,ij->i", vt, vt))
-        force -= (_per(coefficient, owner) * areas * mag)[:, None] * vt
+        force -= (per_element(coefficient, owner) * areas * mag)[:, None] * vt
     if model.pressure:
         v = np.sqrt(np.einsum("ij,ij->i", velocities, velocities))
         moving = v > 1e-9
         cos = np.where(moving, np.einsum("ij,ij->i", velocities, normals)
                        / np.where(moving, v, 1.0), 0.0)
-        r = v / _per(model.reference_speed, owner)
-        push = ((_per(model.pressure_linear, owner) * r
-                 + _per(model.pressure_quadratic, owner) * r * r)
-                * np.power(np.clip(cos, 0.0, 1.0), _per(model.pressure_falloff, owner)))
-        pull = ((_per(model.suction_linear, owner) * r
-                 + _per(model.suction_quadratic, owner) * r * r)
-                * np.power(np.clip(-cos, 0.0, 1.0), _per(model.suction_falloff, owner)))
+        r = v / per_element(model.reference_speed, owner)
+        push = ((per_element(model.pressure_linear, owner) * r
+                 + per_element(model.pressure_quadratic, owner) * r * r)
+                * np.power(np.clip(cos, 0.0, 1.0), per_element(model.pressure_falloff, owner)))
+        pull = ((per_element(model.suction_linear, owner) * r
+                 + per_element(model.suction_quadratic, owner) * r * r)
+                * np.power(np.clip(-cos, 0.0, 1.0), per_element(model.suction_falloff, owner)))
         force += ((pull * (cos < 0) - push * (cos > 0)) * areas)[:, None] * normals
     arms = wet.corners.mean(axis=1) - center_of_mass_world[owner]
     sums = sum_by_owner(np.concatenate([force, cross(arms, force)], axis=1), owner, count)

@@ -32,8 +32,8 @@ from boat_dynamics.fleet import (
     FleetState,
     fleet_forces,
     fleet_step,
+    reference_points,
 )
-from boat_dynamics.rigid_body import rotation_matrix
 from boat_dynamics.scenario import BoatSpec, Scenario
 from boat_dynamics.wrench import cross
 from boat_msgs_py import names
@@ -212,8 +212,7 @@ class DynamicsNode(Node):
 
     def _reference_points(self) -> np.ndarray:
         """(K, 3) m, world positions of the boats' hull reference points."""
-        rot = rotation_matrix(self._state.orientation)
-        return self._state.position - np.einsum("bij,bj->bi", rot, self._fleet.center_of_mass)
+        return reference_points(self._fleet, self._state)[1]
 
     # ------------------------------------------------------------------ callbacks
 
@@ -380,7 +379,7 @@ class DynamicsNode(Node):
 
     def _publish_diagnostics(self, stamp) -> None:
         """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""
-        if self._remedies is None or len(self._remedies) != len(self.boats):
+        if self._remedies is None:
             self._remedies = ["; ".join(active_remedies(b.spec.params, self._substeps))
                               for b in self.boats]
         reports = fleet_reports(self._fleet, self._state, self.sea, self._substeps,

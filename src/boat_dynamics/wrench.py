@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ZERO_WRENCH", "Wrench", "cross", "sum_by_owner", "wrench_at"]
+__all__ = ["ZERO_WRENCH", "Wrench", "cross", "per_element", "sum_by_owner", "wrench_at"]
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -60,6 +60,14 @@ def wrench_at(forces: np.ndarray, points: np.ndarray) -> Wrench:
     f = np.atleast_2d(forces)
     r = np.atleast_2d(points)
     return Wrench(f.sum(axis=0), cross(r, f).sum(axis=0))
+
+
+def per_element(value, owner: np.ndarray):
+    """A per-boat parameter ((B,) array) for each element via ``owner`` (T,), or a scalar.
+
+    A scalar (shared by all boats) is returned as it is.
+    """
+    return np.asarray(value)[owner] if np.ndim(value) else value
 
 
 def sum_by_owner(values: np.ndarray, owner: np.ndarray, count: int) -> np.ndarray:

@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from boat_dynamics.boat import BoatInputs, step
-from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step, point_depths
+from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step, group_depths
 from boat_dynamics.scenario import parse_scenario
 from ocean_sim.waves import WaveComponent, WaveField
 
@@ -91,21 +91,25 @@ def test_the_order_of_the_boats_does_not_matter(order):
     np.testing.assert_allclose(perm.velocity, ref.velocity[list(order)], rtol=0, atol=1e-9)
 
 
-def test_point_depths_are_the_depths_of_each_boats_points():
+def test_group_depths_are_the_depths_of_each_boats_points():
+    from boat_dynamics.boat import reference_pose
+    from boat_dynamics.rigid_body import rotation_matrix
+
     sc = fleet_scenario(BOATS[:5])
     fleet = Fleet([b.params for b in sc.boats])
     state = FleetState.stack([b.initial for b in sc.boats])
-    depths = point_depths(fleet, state, WaveField())  # flat water: depth = -z of each point
-    for i, boat in enumerate(sc.boats):
-        model = boat.params.buoyancy
-        body = model.mesh.vertices if hasattr(model, "mesh") else model.points
-        s = boat.initial
-        from boat_dynamics.boat import reference_pose
-        from boat_dynamics.rigid_body import rotation_matrix
-
-        ref, q = reference_pose(boat.params, s)
-        expected = -(ref + body @ rotation_matrix(q).T)[:, 2]
-        np.testing.assert_allclose(depths[i], expected, atol=1e-12)
+    seen = 0
+    for g, world, depths in group_depths(fleet, state, WaveField()):  # flat: depth = -z
+        for k, i in enumerate(g.index):
+            boat = sc.boats[i]
+            model = boat.params.buoyancy
+            body = model.mesh.vertices if hasattr(model, "mesh") else model.points
+            ref, q = reference_pose(boat.params, boat.initial)
+            expected = ref + body @ rotation_matrix(q).T
+            np.testing.assert_allclose(world[g.owner == k], expected, atol=1e-12)
+            np.testing.assert_allclose(depths[g.owner == k], -expected[:, 2], atol=1e-12)
+            seen += 1
+    assert seen == 5
 
 
 def test_a_fleet_steps_boats_at_one_time():
