@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.fleet import Fleet, FleetState, clip_group, group_depths, reference_points
+from boat_dynamics.fleet import Fleet, FleetState, contacts
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy, hydrostatics_of
 from boat_dynamics.model import BoatParams, BoatState
 from ocean_sim.waves import WaveField
@@ -62,22 +62,24 @@ def boat_report(params: BoatParams, state: BoatState, sea: WaveField,
 
 def fleet_reports(fleet: Fleet, state: FleetState, sea: WaveField, substeps: int = 1,
                   remedies: list[str] | None = None) -> list[BoatReport]:
-    """:func:`boat_report` of every boat of a fleet, with one surface query and one clip.
+    """:func:`boat_report` of every boat of a fleet, from :func:`~boat_dynamics.fleet.contacts`.
+
+    A fleet that has just evaluated its forces at ``state`` reuses that surface query and clip.
 
     ``remedies``: each boat's remedies line ("; "-joined :func:`active_remedies`), if known
     (they depend on the parameters only).
     """
-    rot, _ = reference_points(fleet, state)
     volumes = np.zeros(fleet.count)
     values: list[list] = [[] for _ in range(fleet.count)]
-    for g, world, depths in group_depths(fleet, state, sea):
+    for c in contacts(fleet, state, sea):
+        g, depths = c.group, c.depths
         i = g.index
         count = i.shape[0]
         draft = np.full(count, -np.inf)
         np.maximum.at(draft, g.owner, depths)
         if g.mesh is not None:
-            wet, owner = clip_group(g, rot[i], world, depths)
-            reports = hydrostatics_of(wet, owner, count, rot[i], state.position[i], draft)
+            reports = hydrostatics_of(c.wet, c.wet_owner, count, c.rotation, state.position[i],
+                                      draft)
             for k, hs in zip(i, reports, strict=True):
                 volumes[k] = hs.submerged_volume
                 values[k] = [("buoyancy_model", "mesh"),

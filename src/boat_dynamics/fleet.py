@@ -37,17 +37,17 @@ from boat_dynamics.propulsion import lagged_throttle, thrust
 from boat_dynamics.rigid_body import integrate, rotation_matrix
 from boat_dynamics.rudder import rudder_wrench
 from boat_dynamics.wrench import Wrench, cross
-from ocean_sim.waves import WaveField, sample_surface, stokes_drift
+from ocean_sim.waves import SurfaceSample, WaveField, sample_surface, stokes_drift
 
 __all__ = [
+    "Contact",
     "Fleet",
     "FleetForces",
     "FleetInputs",
     "FleetState",
-    "clip_group",
+    "contacts",
     "fleet_forces",
     "fleet_step",
-    "group_depths",
     "reference_points",
 ]
 
@@ -167,7 +167,6 @@ class _Group:
         owner: (E,) int, the boat (0..G-1) of each vertex / point.
         faces: (F, 3) int, mesh triangles indexing ``body`` (mesh group).
         face_owner: (F,) int, the boat of each triangle (mesh group).
-        face_normals: (F, 3) outward normals, body frames (mesh group).
         propulsion: stacked thruster parameters.
         rudder: stacked rudder parameters.
         length: (G,) m, hull lengths.
@@ -183,7 +182,6 @@ class _Group:
     owner: np.ndarray
     faces: np.ndarray | None
     face_owner: np.ndarray | None
-    face_normals: np.ndarray | None
     propulsion: object
     rudder: object
     length: np.ndarray
@@ -204,16 +202,15 @@ class _Group:
                                          for i, m in enumerate(meshes)])
             mesh = replace(first.buoyancy, drag=_stack([p.buoyancy.drag for p in params]))
             body = np.concatenate([m.vertices for m in meshes])
-            normals = np.concatenate([m.face_normals for m in meshes])
             points = None
         else:
             models = [p.buoyancy for p in params]
             counts = [m.points.shape[0] for m in models]
             body = np.concatenate([m.points for m in models])
             points = replace(_stack(models, skip=("points",)), points=body)
-            mesh = faces = face_owner = normals = None
+            mesh = faces = face_owner = None
         owner = np.concatenate([np.full(n, i, dtype=np.intp) for i, n in enumerate(counts)])
-        return cls(index, mesh, points, body, owner, faces, face_owner, normals,
+        return cls(index, mesh, points, body, owner, faces, face_owner,
                    _stack([p.propulsion for p in params]), _stack([p.rudder for p in params]),
                    np.array([p.hull.length for p in params]), first.stokes_drift,
                    first.min_wavelength, first.wave_precision)
@@ -253,6 +250,67 @@ class Fleet:
         self.gravity = np.array([p.gravity for p in ps])
         self.keel_rate = np.array([p.keel_rate for p in ps])
         self.special = [i for i, p in enumerate(ps) if p.control.mode != "dynamic"]
+        self.memo: tuple | None = None  # the last contacts(): (key, result)
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Where one group's hulls meet the water, at one state.
+
+    Attributes:
+        group: the group.
+        rotation: (G, 3, 3) the group's body-to-world rotations.
+        world: (E, 3) m, its hull vertices or sample points, world frame.
+        depths: (E,) m, their depths below the surface (> 0 = submerged).
+        surface: the surface at those points.
+        at_reference: the surface at the boats' hull reference points.
+        wet: the clipped hull triangles (mesh group; None for sample points).
+        wet_owner: (T,) int, the boat (0..G-1) of each wet triangle (mesh group).
+    """
+
+    group: _Group
+    rotation: np.ndarray
+    world: np.ndarray
+    depths: np.ndarray
+    surface: SurfaceSample
+    at_reference: SurfaceSample
+    wet: SubmergedTriangles | None
+    wet_owner: np.ndarray | None
+
+
+def contacts(fleet: Fleet, state: FleetState, sea: WaveField) -> list[Contact]:
+    """Every group's :class:`Contact` at ``state``: one surface query per wave filter.
+
+    The last result is kept on the fleet: the forces of a step and the /diagnostics about the
+    same state share one surface query and one clip. It is reused only for the very same
+    state arrays, time and sea (states are never modified in place).
+    """
+    return _contacts(fleet, state, sea)[1]
+
+
+def _contacts(fleet: Fleet, state: FleetState, sea: WaveField
+              ) -> tuple[np.ndarray, list[Contact]]:
+    """(B, 3, 3) body-to-world rotations and :func:`contacts`."""
+    memo = fleet.memo
+    if memo is not None:
+        position, orientation, t, of_sea = memo[0]
+        if (position is state.position and orientation is state.orientation and t == state.t
+                and of_sea is sea):
+            return memo[1]
+    rot, ref = reference_points(fleet, state)
+    queries = _world_points(fleet, rot, ref)
+    out = []
+    for (g, world), (surface, at_ref) in zip(queries, _sample(sea, state.t, queries, ref),
+                                             strict=True):
+        rot_g = rot[g.index]
+        depths = surface.heights - world[:, 2]
+        wet = wet_owner = None
+        if g.mesh is not None:
+            wet = clip_hulls(g.faces, world, depths)
+            wet_owner = g.face_owner.take(wet.faces)
+        out.append(Contact(g, rot_g, world, depths, surface, at_ref, wet, wet_owner))
+    fleet.memo = ((state.position, state.orientation, state.t, sea), (rot, out))
+    return rot, out
 
 
 def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: WaveField
@@ -263,22 +321,19 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
         The forces, and (B, 3) the surface normal at each boat's hull reference point.
     """
     b = fleet.count
-    rot, ref = reference_points(fleet, state)
-    # one surface query per wave filter, for every group's points and reference points
-    queries = _world_points(fleet, rot, ref)
-    surfaces = _sample(sea, state.t, queries, ref)
+    rot, touching = _contacts(fleet, state, sea)
     sums = {s: (np.zeros((b, 3)), np.zeros((b, 3))) for s in ("buoyancy", "drag")}
     water_velocity = np.zeros((b, 3))
     normals_ref = np.zeros((b, 3))
-    for (g, _), (_, at_ref) in zip(queries, surfaces, strict=True):
-        water_velocity[g.index] = at_ref.velocities
-        normals_ref[g.index] = at_ref.normals
+    for c in touching:
+        g = c.group
+        water_velocity[g.index] = c.at_reference.velocities
+        normals_ref[g.index] = c.at_reference.normals
         if g.stokes_drift:
             water_velocity[g.index] += _stokes(sea.filtered(g.min_wavelength))
     relative = state.velocity - np.einsum("bji,bj->bi", rot, water_velocity)  # body frame
-    for (g, world), (surface, _) in zip(queries, surfaces, strict=True):
-        _buoyancy_and_drag(fleet, g, state, rot, relative, world,
-                           surface.heights - world[:, 2], surface, sums)
+    for c in touching:
+        _buoyancy_and_drag(fleet, c, state, relative, sums)
     com = fleet.center_of_mass
     damp = damping(fleet.damping_linear, fleet.damping_quadratic, relative,
                    state.angular_velocity)
@@ -297,34 +352,6 @@ def reference_points(fleet: Fleet, state: FleetState) -> tuple[np.ndarray, np.nd
     """(B, 3, 3) body-to-world rotations and (B, 3) m world hull reference points."""
     rot = rotation_matrix(state.orientation)
     return rot, state.position - np.einsum("bij,bj->bi", rot, fleet.center_of_mass)
-
-
-def clip_group(g: _Group, rot: np.ndarray, world: np.ndarray, depths: np.ndarray
-               ) -> tuple[SubmergedTriangles, np.ndarray]:
-    """The wetted triangles of a mesh group's hulls and the boat (0..G-1) of each.
-
-    Args:
-        g: a mesh group.
-        rot: (G, 3, 3) the group's body-to-world rotations.
-        world: (E, 3) m, its hull vertices, world frame.
-        depths: (E,) m, their depths below the surface.
-    """
-    normals = np.einsum("fij,fj->fi", rot[g.face_owner], g.face_normals)
-    wet = clip_hulls(g.faces, normals, world, depths)
-    return wet, g.face_owner[wet.faces]
-
-
-def group_depths(fleet: Fleet, state: FleetState, sea: WaveField
-                 ) -> list[tuple[_Group, np.ndarray, np.ndarray]]:
-    """Per group: (group, (E, 3) m world vertices / points, (E,) m their depths now).
-
-    One surface query for the whole fleet (per wave filter).
-    """
-    rot, ref = reference_points(fleet, state)
-    queries = _world_points(fleet, rot, ref)
-    return [(g, world, surface.heights - world[:, 2])
-            for (g, world), (surface, _) in zip(queries, _sample(sea, state.t, queries, ref),
-                                                strict=True)]
 
 
 def _world_points(fleet: Fleet, rot: np.ndarray, ref: np.ndarray) -> list:
@@ -367,16 +394,16 @@ def _sample(sea: WaveField, t: float, queries: list, ref: np.ndarray) -> list:
     return out
 
 
-def _buoyancy_and_drag(fleet: Fleet, g: _Group, state: FleetState, rot: np.ndarray,
-                       relative: np.ndarray, world: np.ndarray, depths: np.ndarray,
-                       surface, sums: dict) -> None:
+def _buoyancy_and_drag(fleet: Fleet, c: Contact, state: FleetState, relative: np.ndarray,
+                       sums: dict) -> None:
     """Buoyancy (and hull drag) of one group's boats, added into ``sums`` (body frames)."""
+    g = c.group
     i = g.index
     count = i.shape[0]
-    rot_g = rot[i]
+    rot_g = c.rotation
     rho_g = fleet.water_density[i] * fleet.gravity[i]
     if g.mesh is not None:
-        wet, owner = clip_group(g, rot_g, world, depths)
+        wet, owner = c.wet, c.wet_owner
         force, torque = pressure_wrenches(wet, owner, count, state.position[i], rho_g)
         _add_world(sums["buoyancy"], i, rot_g, force, torque)
         drag = g.mesh.drag
@@ -398,9 +425,9 @@ def _buoyancy_and_drag(fleet: Fleet, g: _Group, state: FleetState, rot: np.ndarr
         arms = model.points - com[g.owner]
         v_points = state.velocity[i][g.owner] + cross(state.angular_velocity[i][g.owner], arms)
         point_velocities = (np.einsum("eij,ej->ei", rot_g[g.owner], v_points)
-                            - surface.velocities)
-    force, torque = sample_point_wrenches(model, g.owner, count, depths, rot_g, com, rho_g,
-                                          surface.normals, point_velocities, fleet.mass[i])
+                            - c.surface.velocities)
+    force, torque = sample_point_wrenches(model, g.owner, count, c.depths, rot_g, com, rho_g,
+                                          c.surface.normals, point_velocities, fleet.mass[i])
     sums["buoyancy"][0][i] += force
     sums["buoyancy"][1][i] += torque
 

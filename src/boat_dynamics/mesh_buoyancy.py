@@ -20,6 +20,7 @@ variant, "true center of pressure").
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -32,8 +33,8 @@ __all__ = [
     "MeshBuoyancy",
     "SubmergedTriangles",
     "clip_hulls",
+    "clip_parts",
     "clip_submerged",
-    "clip_submerged_indexed",
     "hydrostatics",
     "hydrostatics_of",
     "mesh_buoyancy",
@@ -55,9 +56,61 @@ class MeshBuoyancy:
     drag: HullDrag = field(default_factory=HullDrag)
 
 
+#: The submerged parts of a triangle by its wet corners, coded w0 + 2 w1 + 4 w2: up to two
+#: triangles, as indices into (V0, V1, V2, E01, E12, E20), its corners then the waterline
+#: points on its edges 0-1, 1-2 and 2-0, each part wound as the triangle (so with its normal);
+#: -1: no part. One wet corner keeps its corner triangle, two a quadrilateral split in two.
+_PARTS_BY_CODE = np.array([
+    [-1, -1, -1, -1, -1, -1],  # 0: dry
+    [0, 3, 5, -1, -1, -1],  # 1: V0 wet
+    [1, 4, 3, -1, -1, -1],  # 2: V1 wet
+    [0, 1, 4, 0, 4, 5],  # 3: V2 dry: V0 V1 E12 E20
+    [2, 5, 4, -1, -1, -1],  # 4: V2 wet
+    [2, 0, 3, 2, 3, 4],  # 5: V1 dry: V2 V0 E01 E12
+    [1, 2, 5, 1, 5, 3],  # 6: V0 dry: V1 V2 E20 E01
+    [0, 1, 2, -1, -1, -1],  # 7: all wet
+])
+_CODE = np.array([1, 2, 4], dtype=np.int8)
+_NEXT = np.array([1, 2, 0])
+
+
+def clip_parts(corners: np.ndarray, depths: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The submerged parts of triangles, as triangles, without a branch per case.
+
+    Each triangle's wet corners make a code (0-7) that looks up its parts in a table; the
+    waterline points of all three edges are computed for every triangle. The cost is a fixed
+    twenty numpy calls whatever the waterline does (a loop over the cases costs three times
+    more for a few boats).
+
+    Args:
+        corners: (F, 3, 3) m, triangle vertices, world frame.
+        depths: (F, 3) m, depth below the surface at each vertex (> 0 = submerged).
+
+    Returns:
+        (T, 3, 3) corners, (T, 3) depths (0 on the waterline) of the parts, and (T,) int the
+        triangle each comes from; winding is preserved.
+    """
+    f = corners.shape[0]
+    table = _PARTS_BY_CODE.take((depths > 0.0).view(np.int8) @ _CODE, axis=0).reshape(2 * f, 3)
+    kept = np.flatnonzero(table[:, 0] >= 0)
+    source = kept >> 1
+    pick = table.take(kept, axis=0) + 6 * source[:, None]  # into the (6F,) points below
+    # waterline points on the edges (i, i+1); t is only used where the edge is crossed
+    drop = depths - depths.take(_NEXT, axis=1)
+    t = depths / np.where(drop != 0.0, drop, 1.0)
+    points = np.empty((f, 6, 3))
+    points[:, :3] = corners
+    points[:, 3:] = corners + t[:, :, None] * (corners.take(_NEXT, axis=1) - corners)
+    point_depths = np.zeros((f, 6))
+    point_depths[:, :3] = depths
+    return (points.reshape(6 * f, 3).take(pick.ravel(), axis=0).reshape(-1, 3, 3),
+            point_depths.reshape(6 * f).take(pick), source)
+
+
 def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The submerged parts of triangles, as triangles.
+    """The submerged parts of triangles, as triangles (see :func:`clip_parts`).
 
     Args:
         corners: (F, 3, 3) m, triangle vertices, world frame.
@@ -66,53 +119,15 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
 
     Returns:
         (T, 3, 3) corners, (T, 3) depths (0 on the waterline), (T, 3) normals of the submerged
-        triangles; winding is preserved. A triangle with one vertex under water gives one
-        triangle, with two a quadrilateral split in two.
+        triangles; winding is preserved.
     """
-    return clip_submerged_indexed(corners, depths, normals)[:3]
+    p, d, source = clip_parts(corners, depths)
+    return p, d, normals[source]
 
 
-def clip_submerged_indexed(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
-                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`clip_submerged`, plus (T,) the index of the input triangle each part comes from."""
-    wet = depths > 0.0
-    count = wet.sum(axis=1)
-    rows = np.arange(corners.shape[0])
-    full = rows[count == 3]
-    out_p, out_d, out_n, out_s = [corners[full]], [depths[full]], [normals[full]], [full]
-
-    def edge_point(p_from, d_from, p_to, d_to):
-        t = d_from / (d_from - d_to)
-        return p_from + t[:, None] * (p_to - p_from)
-
-    one = rows[count == 1]
-    if one.size:
-        a = np.argmax(wet[one], axis=1)  # the submerged vertex; b, c keep the winding
-        b, c = (a + 1) % 3, (a + 2) % 3
-        pa, pb, pc = corners[one, a], corners[one, b], corners[one, c]
-        da, db, dc = depths[one, a], depths[one, b], depths[one, c]
-        ab, ac = edge_point(pa, da, pb, db), edge_point(pa, da, pc, dc)
-        zero = np.zeros_like(da)
-        out_p.append(np.stack([pa, ab, ac], axis=1))
-        out_d.append(np.stack([da, zero, zero], axis=1))
-        out_n.append(normals[one])
-        out_s.append(one)
-    two = rows[count == 2]
-    if two.size:
-        c = np.argmin(wet[two], axis=1)  # the dry vertex; a, b keep the winding
-        a, b = (c + 1) % 3, (c + 2) % 3
-        pa, pb, pc = corners[two, a], corners[two, b], corners[two, c]
-        da, db, dc = depths[two, a], depths[two, b], depths[two, c]
-        bc, ca = edge_point(pb, db, pc, dc), edge_point(pa, da, pc, dc)
-        zero = np.zeros_like(da)
-        out_p += [np.stack([pa, pb, bc], axis=1), np.stack([pa, bc, ca], axis=1)]
-        out_d += [np.stack([da, db, zero], axis=1), np.stack([da, zero, zero], axis=1)]
-        out_n += [normals[two], normals[two]]
-        out_s += [two, two]
-    if len(out_p) == 1:
-        return out_p[0], out_d[0], out_n[0], out_s[0]
-    return (np.concatenate(out_p), np.concatenate(out_d), np.concatenate(out_n),
-            np.concatenate(out_s))
+def _vector_areas(corners: np.ndarray) -> np.ndarray:
+    """(T, 3) m^2, area times outward unit normal of (T, 3, 3) triangles: (e1 x e2) / 2."""
+    return 0.5 * cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
 
 
 @dataclass(frozen=True)
@@ -122,44 +137,47 @@ class SubmergedTriangles:
     Attributes:
         corners: (T, 3, 3) m.
         depths: (T, 3) m below the surface at each corner.
-        normals: (T, 3) outward unit normals.
-        areas: (T,) m^2.
+        vector_areas: (T, 3) m^2, area times outward unit normal: all that pressure
+            integrals need.
         faces: (T,) int, the hull face each part comes from.
     """
 
     corners: np.ndarray
     depths: np.ndarray
-    normals: np.ndarray
-    areas: np.ndarray
+    vector_areas: np.ndarray
     faces: np.ndarray
 
-    def __iter__(self):
-        return iter((self.corners, self.depths, self.normals, self.areas))
+    @cached_property
+    def areas(self) -> np.ndarray:
+        """(T,) m^2."""
+        return np.sqrt(np.einsum("ij,ij->i", self.vector_areas, self.vector_areas))
+
+    @cached_property
+    def normals(self) -> np.ndarray:
+        """(T, 3) outward unit normals (0 for a zero-area part)."""
+        area = self.areas
+        return self.vector_areas / np.where(area > 0.0, area, 1.0)[:, None]
 
 
-def clip_hulls(faces: np.ndarray, normals_world: np.ndarray, vertices_world: np.ndarray,
-               vertex_depths: np.ndarray) -> SubmergedTriangles:
-    """Clip hulls at the surface sampled at their vertices (see :func:`clip_submerged`).
+def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.ndarray
+               ) -> SubmergedTriangles:
+    """Clip hulls at the surface sampled at their vertices (see :func:`clip_parts`).
 
     Args:
-        faces: (F, 3) int, vertex indices of each triangle (several hulls may be concatenated).
-        normals_world: (F, 3) outward unit normals, world frame.
+        faces: (F, 3) int, vertex indices of each triangle (several hulls may be concatenated),
+            wound counter-clockwise seen from outside.
         vertices_world: (V, 3) m.
         vertex_depths: (V,) m, surface height minus vertex height.
+
     """
-    p, d, n, source = clip_submerged_indexed(vertices_world[faces], vertex_depths[faces],
-                                             normals_world)
-    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
-    c = cross(e1, e2)
-    area = 0.5 * np.sqrt(np.einsum("ij,ij->i", c, c))
-    return SubmergedTriangles(p, d, n, area, source)
+    p, d, source = clip_parts(vertices_world.take(faces, axis=0), vertex_depths.take(faces))
+    return SubmergedTriangles(p, d, _vector_areas(p), source)
 
 
 def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
-                        vertex_depths: np.ndarray, rotation: np.ndarray) -> SubmergedTriangles:
-    """Clip one hull at the surface sampled at its vertices (see :func:`clip_submerged`)."""
-    return clip_hulls(model.mesh.faces, model.mesh.face_normals @ rotation.T, vertices_world,
-                      vertex_depths)
+                        vertex_depths: np.ndarray) -> SubmergedTriangles:
+    """Clip one hull at the surface sampled at its vertices (see :func:`clip_parts`)."""
+    return clip_hulls(model.mesh.faces, vertices_world, vertex_depths)
 
 
 def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
@@ -177,15 +195,18 @@ def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
     Returns:
         (B, 3) N forces and (B, 3) N m torques about the centres of mass, world frame.
     """
-    p, d, n, area = wet
-    dsum = d.sum(axis=1)
-    integral_d = area * dsum / 3.0  # integral of d dA, m^3
-    rel = p - center_of_mass_world[owner][:, None, :]
-    moment = (area / 12.0)[:, None] * (rel.sum(axis=1) * dsum[:, None]
-                                        + np.einsum("tj,tjk->tk", d, rel))
-    pressure_n = -rho_g[owner][:, None] * n
-    per_triangle = np.concatenate([integral_d[:, None] * pressure_n,
-                                   cross(moment, pressure_n)], axis=1)
+    p, d, vector_area = wet.corners, wet.depths, wet.vector_areas
+    d0, d1, d2 = d[:, 0], d[:, 1], d[:, 2]
+    dsum = d0 + d1 + d2  # sums over corners written out: numpy reduces a length-3 axis slowly
+    com = center_of_mass_world[owner]
+    # integral(r d dA) = A / 12 sum_j r_j (sum_k d_k + d_j), r about the centre of mass
+    moment = ((p[:, 0] - com) * (dsum + d0)[:, None] + (p[:, 1] - com) * (dsum + d1)[:, None]
+              + (p[:, 2] - com) * (dsum + d2)[:, None])
+    rho_g_t = rho_g[owner]
+    per_triangle = np.empty((d.shape[0], 6))
+    # force -rho g integral(d dA) n = -rho g (sum d / 3) A n, at the centre of pressure
+    per_triangle[:, :3] = (rho_g_t * dsum * (-1.0 / 3.0))[:, None] * vector_area
+    per_triangle[:, 3:] = (rho_g_t * (-1.0 / 12.0))[:, None] * cross(moment, vector_area)
     sums = sum_by_owner(per_triangle, owner, count)
     return sums[:, :3], sums[:, 3:]
 
@@ -216,8 +237,8 @@ def mesh_buoyancy(
         The wrench about the centre of mass, body frame.
     """
     if wet is None:
-        wet = submerged_triangles(model, vertices_world, vertex_depths, rotation)
-    force, torque = pressure_wrenches(wet, np.zeros(wet.areas.shape[0], dtype=np.intp), 1,
+        wet = submerged_triangles(model, vertices_world, vertex_depths)
+    force, torque = pressure_wrenches(wet, np.zeros(wet.depths.shape[0], dtype=np.intp), 1,
                                       np.asarray(center_of_mass_world)[None, :],
                                       np.array([water_density * gravity]))
     return Wrench(rotation.T @ force[0], rotation.T @ torque[0])
@@ -248,8 +269,8 @@ def hydrostatics(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths:
 
     See :func:`hydrostatics_of` for the method.
     """
-    wet = submerged_triangles(model, vertices_world, vertex_depths, rotation)
-    return hydrostatics_of(wet, np.zeros(wet.areas.shape[0], dtype=np.intp), 1,
+    wet = submerged_triangles(model, vertices_world, vertex_depths)
+    return hydrostatics_of(wet, np.zeros(wet.depths.shape[0], dtype=np.intp), 1,
                            rotation[None], np.asarray(center_of_mass_world)[None],
                            np.array([vertex_depths.max()]))[0]
 
@@ -275,14 +296,14 @@ def hydrostatics_of(wet: SubmergedTriangles, owner: np.ndarray, count: int,
         center_of_mass_world: (B, 3) m.
         draft: (B,) m, depth of each hull's lowest vertex below its surface.
     """
-    p, d, n, area = wet
-    nz = n[:, 2]
+    p, d = wet.corners, wet.depths
+    nz_area = wet.vector_areas[:, 2]  # n_z dA
 
     def integral(f, g=None):
-        """Integral over each triangle of f (linear) or f*g (both linear), (T,)."""
+        """Integral over each triangle of f (linear) or f*g (both linear), per unit area."""
         if g is None:
-            return area * f.sum(axis=1) / 3.0
-        return area / 12.0 * (f.sum(axis=1) * g.sum(axis=1) + (f * g).sum(axis=1))
+            return f.sum(axis=1) / 3.0
+        return (f.sum(axis=1) * g.sum(axis=1) + (f * g).sum(axis=1)) / 12.0
 
     # waterplane moments, in coordinates across each body x axis (transverse)
     axis = rotation[:, :, 0].copy()
@@ -292,19 +313,17 @@ def hydrostatics_of(wet: SubmergedTriangles, owner: np.ndarray, count: int,
     s = np.einsum("tjk,tk->tj", p, across[owner])  # transverse coordinate of each corner
     x, y, z = p[:, :, 0], p[:, :, 1], p[:, :, 2]
     columns = np.stack([integral(d), integral(x, d), integral(y, d),
-                        integral(z, d) + 0.5 * integral(d, d), area, integral(s),
-                        integral(s, s)], axis=1)
-    sums = sum_by_owner(-columns * nz[:, None], owner, count)
-    out = []
-    for b in range(count):
-        volume, mx, my, mz, a_wp, s_first, s_second = sums[b].tolist()
-        com = center_of_mass_world[b]
-        if volume <= 0.0:
-            out.append(Hydrostatics(0.0, com.copy(), 0.0, 0.0, 0.0))
-            continue
-        cb = np.array([mx, my, mz]) / volume
-        s_mean = s_first / a_wp if a_wp > 0.0 else 0.0
-        i_wp = s_second - a_wp * s_mean**2
-        gm = (cb[2] + i_wp / volume) - com[2]
-        out.append(Hydrostatics(volume, cb, a_wp, gm, float(draft[b])))
-    return out
+                        integral(z, d) + 0.5 * integral(d, d), np.ones_like(nz_area),
+                        integral(s), integral(s, s)], axis=1)
+    sums = sum_by_owner(-columns * nz_area[:, None], owner, count)
+    volume, a_wp, s_first, s_second = sums[:, 0], sums[:, 4], sums[:, 5], sums[:, 6]
+    floating = volume > 0.0
+    cb = np.where(floating[:, None], sums[:, 1:4] / np.where(floating, volume, 1.0)[:, None],
+                  center_of_mass_world)
+    s_mean = s_first / np.where(a_wp > 0.0, a_wp, np.inf)
+    i_wp = s_second - a_wp * s_mean**2
+    gm = cb[:, 2] + i_wp / np.where(floating, volume, np.inf) - center_of_mass_world[:, 2]
+    rows = zip(floating.tolist(), volume.tolist(), cb, a_wp.tolist(), gm.tolist(),
+               np.asarray(draft, dtype=float).tolist(), strict=True)
+    return [Hydrostatics(v, c, a, m, d) if f else Hydrostatics(0.0, c, 0.0, 0.0, 0.0)
+            for f, v, c, a, m, d in rows]

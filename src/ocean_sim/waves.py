@@ -258,9 +258,14 @@ class _Weights:
     kd: np.ndarray  # (2, M) k D
     qad: np.ndarray  # (M, 2) Q a D
     jac: np.ndarray  # (M, 3) Q a k [Dx Dx, Dx Dy, Dy Dy]
-    of_cos: np.ndarray  # (M, 7) [a, Qak DxDx, Qak DxDy, Qak DyDy, Qaw Dx, Qaw Dy, a w^2]
-    of_sin: np.ndarray  # (M, 5) [a k Dx, a k Dy, a w, Q a w^2 Dx, Q a w^2 Dy]
+    # (2M, 12): [cos theta, sin theta] @ outputs = the columns of _OUTPUTS
+    outputs: np.ndarray
     horizontal: bool  # any Q a > 0: the inversion is needed
+
+
+#: The columns of [cos, sin] @ _Weights.outputs: height, particle velocity and acceleration
+#: (3 each), then the terms of the tangents dP/dx0 = (1 - A, -B, -Sx), dP/dy0 = (-B, 1 - C, -Sy).
+_OUTPUTS = ("z", "vx", "vy", "vz", "ax", "ay", "az", "A", "B", "C", "Sx", "Sy")
 
 
 def _weights(wf: WaveField, precision: str) -> _Weights:
@@ -270,14 +275,18 @@ def _weights(wf: WaveField, precision: str) -> _Weights:
         qak = ar.q * ar.a * ar.k
         qaw = ar.q * ar.a * ar.omega
         jac = np.stack([qak * ar.dx * ar.dx, qak * ar.dx * ar.dy, qak * ar.dy * ar.dy], axis=1)
-        of_cos = np.column_stack([ar.a, jac, qaw * ar.dx, qaw * ar.dy, ar.a * ar.omega**2])
-        of_sin = np.stack([ar.a * ar.k * ar.dx, ar.a * ar.k * ar.dy, ar.a * ar.omega,
-                           qaw * ar.omega * ar.dx, qaw * ar.omega * ar.dy], axis=1)
+        zero = np.zeros_like(ar.a)
+        # P = p0 - sum Q a D sin(theta) + z a cos(theta), theta = k D.p0 - omega t + phi
+        of_cos = [ar.a, qaw * ar.dx, qaw * ar.dy, zero, zero, zero, -ar.a * ar.omega**2,
+                  *jac.T, zero, zero]
+        of_sin = [zero, zero, zero, ar.a * ar.omega, qaw * ar.omega * ar.dx,
+                  qaw * ar.omega * ar.dy, zero, zero, zero, zero, ar.a * ar.k * ar.dx,
+                  ar.a * ar.k * ar.dy]
+        outputs = np.concatenate([np.stack(of_cos, axis=1), np.stack(of_sin, axis=1)])
         dt = np.dtype(precision)
         wf._cache[key] = _Weights(
             kd=ar.kd.astype(dt), qad=ar.qad.astype(dt), jac=jac.astype(dt),
-            of_cos=of_cos.astype(dt), of_sin=of_sin.astype(dt),
-            horizontal=bool(np.any(ar.q * ar.a > 0.0)),
+            outputs=outputs.astype(dt), horizontal=bool(np.any(ar.q * ar.a > 0.0)),
         )
     return wf._cache[key]
 
@@ -300,46 +309,56 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: str, invert: bool
     """
     dt = np.dtype(precision)
     w = _weights(wf, precision)
-    center = xy.mean(axis=0) if xy.shape[0] else np.zeros(2)
+    n = xy.shape[0]
+    center = xy.sum(axis=0) * (1.0 / n) if n else np.zeros(2)
     offset = np.mod(center @ wf.arrays.kd + _time_phase(wf, t), TWO_PI)
     base = (xy - center).astype(dt) @ w.kd + offset.astype(dt)
-    d = np.zeros(xy.shape, dtype=dt)
     s, c = np.sin(base), np.cos(base)
     if not (invert and w.horizontal):
         return xy.copy(), s, c
-    # F(d) = d - sum Q a D sin(theta) = 0 (F = p0 - displacement - xy)
-    r = d - s @ w.qad
+    # F(d) = d - sum Q a D sin(theta) = 0 (F = p0 - displacement - xy), from d = 0
+    d = np.zeros(xy.shape, dtype=dt)
+    r = -(s @ w.qad)
     err = np.hypot(r[:, 0], r[:, 1])
-    n = xy.shape[0]
     for _ in range(max_iter):
         active = np.flatnonzero(err > tol)
         if active.size == 0:
             break
-        full = active.size == n  # then plain arrays: no (N, M) gathers and scatters
+        # Most points active: step them all and keep the converged ones as they were, which
+        # costs less than (N, M) gathers and scatters (and gives the same numbers).
+        full = 2 * active.size > n
         rows = slice(None) if full else active
         j = c[rows] @ w.jac  # J = I - sum Q a k cos(theta) D D^T
         jxx, jxy, jyy = 1.0 - j[:, 0], -j[:, 1], 1.0 - j[:, 2]
         det = jxx * jyy - jxy * jxy
         ra = r[rows]
         ok = det > 1e-6
-        safe = np.where(ok, det, 1.0)
-        newton = np.stack([(jyy * ra[:, 0] - jxy * ra[:, 1]) / safe,
-                           (jxx * ra[:, 1] - jxy * ra[:, 0]) / safe], axis=1)
-        cand = d[rows] - np.where(ok[:, None], newton, ra)
+        step = np.empty_like(ra)
+        step[:, 0] = jyy * ra[:, 0] - jxy * ra[:, 1]
+        step[:, 1] = jxx * ra[:, 1] - jxy * ra[:, 0]
+        step /= np.where(ok, det, 1.0)[:, None]
+        if not ok.all():
+            step[~ok] = ra[~ok]
+        cand = d[rows] - step
         theta = base[rows] + cand @ w.kd
         sa = np.sin(theta)
         rc = cand - sa @ w.qad
         ec = np.hypot(rc[:, 0], rc[:, 1])
-        worse = np.flatnonzero(ec >= err[rows])
+        worse = np.flatnonzero((ec >= err[rows]) & (err[rows] > tol))
         if worse.size:  # fixed-point step: shrinks |F| by sum Q k a < 1
-            back = active[worse]
+            back = worse if full else active[worse]
             cand[worse] = d[back] - ra[worse]
             theta[worse] = base[back] + cand[worse] @ w.kd
             sa[worse] = np.sin(theta[worse])
             rc[worse] = cand[worse] - sa[worse] @ w.qad
             ec[worse] = np.hypot(rc[worse, 0], rc[worse, 1])
-        if full:
+        if active.size == n:
             d, s, c, r, err = cand, sa, np.cos(theta), rc, ec
+        elif full:
+            done = err <= tol
+            keep = done[:, None]
+            d, s, r = np.where(keep, d, cand), np.where(keep, s, sa), np.where(keep, r, rc)
+            c, err = np.where(keep, c, np.cos(theta)), np.where(done, err, ec)
         else:
             d[active], s[active], c[active] = cand, sa, np.cos(theta)
             r[active], err[active] = rc, ec
@@ -450,20 +469,22 @@ def sample_surface(
     p0, s, c = _solve(sea, pts, t, precision, invert, INVERSION_TOLERANCE[precision],
                       INVERSION_MAX_ITERATIONS)
     w = _weights(sea, precision)
-    fc = (c @ w.of_cos).astype(float)  # a, Qak DxDx, Qak DxDy, Qak DyDy, Qaw Dx, Qaw Dy, aw^2
-    fs = (s @ w.of_sin).astype(float)  # ak Dx, ak Dy, aw, Qaw^2 Dx, Qaw^2 Dy
-    # tangents of P(p0) along x0 and y0
-    txx, txy, txz = 1.0 - fc[:, 1], -fc[:, 2], -fs[:, 0]
-    tyx, tyy, tyz = txy, 1.0 - fc[:, 3], -fs[:, 1]
-    nrm = np.stack([txy * tyz - txz * tyy, txz * tyx - txx * tyz, txx * tyy - txy * tyx], axis=1)
-    length = np.linalg.norm(nrm, axis=1)
-    normals = np.zeros((n, 3))
-    normals[:, 2] = 1.0
-    ok = length > 1e-12  # a cusp (sum Q k a = 1 at a crest) has a vertical normal
-    normals[ok] = nrm[ok] / length[ok, None]
-    velocities = np.stack([fc[:, 4], fc[:, 5], fs[:, 2]], axis=1)
-    accelerations = np.stack([fs[:, 3], fs[:, 4], -fc[:, 6]], axis=1)
-    return SurfaceSample(fc[:, 0], normals, velocities, accelerations, p0)
+    out = (np.concatenate([c, s], axis=1) @ w.outputs).astype(float)  # columns: _OUTPUTS
+    a, b, cc, sx, sy = out[:, 7], out[:, 8], out[:, 9], out[:, 10], out[:, 11]
+    # dP/dx0 x dP/dy0 with dP/dx0 = (1 - A, -B, -Sx), dP/dy0 = (-B, 1 - C, -Sy)
+    nrm = np.empty((n, 3))
+    nrm[:, 0] = b * sy + sx * (1.0 - cc)
+    nrm[:, 1] = b * sx + sy * (1.0 - a)
+    nrm[:, 2] = (1.0 - a) * (1.0 - cc) - b * b
+    length = np.sqrt(np.einsum("ij,ij->i", nrm, nrm))
+    if n and length.min() > 1e-12:
+        normals = nrm / length[:, None]
+    else:  # a cusp (sum Q k a = 1 at a crest) has a vertical normal
+        normals = np.zeros((n, 3))
+        normals[:, 2] = 1.0
+        ok = length > 1e-12
+        normals[ok] = nrm[ok] / length[ok, None]
+    return SurfaceSample(out[:, 0], normals, out[:, 1:4], out[:, 4:7], p0)
 
 
 def surface_height(wf: WaveField, xy: np.ndarray, t: float, **options: object) -> np.ndarray:

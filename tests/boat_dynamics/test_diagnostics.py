@@ -1,6 +1,7 @@
+import numpy as np
 import pytest
 
-from boat_dynamics.boat import initial_state
+from boat_dynamics.boat import BoatInputs, initial_state
 from boat_dynamics.diagnostics import boat_report
 from boat_dynamics.scenario import parse_scenario
 from ocean_sim.waves import WaveField
@@ -57,3 +58,34 @@ def test_fleet_reports_equal_each_boats_report():
     assert [r.level for r in together] == [0, 0, 0, 1]
     assert dict(together[1].values)["waterplane_area_m2"] != dict(
         together[0].values)["waterplane_area_m2"]
+
+
+def test_reports_reuse_the_steps_contacts_only_for_the_same_state():
+    from boat_dynamics.diagnostics import fleet_reports
+    from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step
+    from ocean_sim.waves import WaveComponent
+
+    sc = parse_scenario({"boats": [
+        {"name": "a", "initial_pose": {"position": [0, 0, 0.3], "roll_deg": 5.0}},
+        {"name": "b", "buoyancy": {"model": "sample_points"},
+         "initial_pose": {"position": [10, 0, 0.2]}}]})
+    sea = WaveField((WaveComponent(0.3, 15.0, 0.4, 0.7, 0.2),))
+    params = [b.params for b in sc.boats]
+    fleet = Fleet(params)
+    before = FleetState.stack([b.initial for b in sc.boats])
+    after, _ = fleet_step(fleet, before, FleetInputs.stack([BoatInputs()] * 2), sea, 0.05)
+    # the fleet now holds the contacts of `before` (where the step evaluated its forces)
+    assert fleet.memo is not None and fleet.memo[0][0] is before.position
+    reused = fleet_reports(fleet, before, sea)
+    fresh = fleet_reports(Fleet(params), before, sea)
+    assert reused == fresh
+    moved = fleet_reports(fleet, after, sea)  # another state: computed anew
+    assert moved == fleet_reports(Fleet(params), after, sea)
+    assert moved != reused  # the boats moved in 0.05 s: their drafts changed
+    # and the next step reuses the contacts the reports computed: bit-identical to a fresh fleet
+    assert fleet.memo[0][0] is after.position
+    inputs = FleetInputs.stack([BoatInputs(0.5, 0.1)] * 2)
+    reusing, _ = fleet_step(fleet, after, inputs, sea, 0.05)
+    fresh_step, _ = fleet_step(Fleet(params), after, inputs, sea, 0.05)
+    assert np.array_equal(reusing.position, fresh_step.position)
+    assert np.array_equal(reusing.orientation, fresh_step.orientation)

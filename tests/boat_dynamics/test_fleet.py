@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from boat_dynamics.boat import BoatInputs, step
-from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step, group_depths
+from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, contacts, fleet_step
 from boat_dynamics.scenario import parse_scenario
 from ocean_sim.waves import WaveComponent, WaveField
 
@@ -91,7 +91,7 @@ def test_the_order_of_the_boats_does_not_matter(order):
     np.testing.assert_allclose(perm.velocity, ref.velocity[list(order)], rtol=0, atol=1e-9)
 
 
-def test_group_depths_are_the_depths_of_each_boats_points():
+def test_contacts_are_the_depths_of_each_boats_points():
     from boat_dynamics.boat import reference_pose
     from boat_dynamics.rigid_body import rotation_matrix
 
@@ -99,7 +99,8 @@ def test_group_depths_are_the_depths_of_each_boats_points():
     fleet = Fleet([b.params for b in sc.boats])
     state = FleetState.stack([b.initial for b in sc.boats])
     seen = 0
-    for g, world, depths in group_depths(fleet, state, WaveField()):  # flat: depth = -z
+    for c in contacts(fleet, state, WaveField()):  # flat: depth = -z
+        g, world, depths = c.group, c.world, c.depths
         for k, i in enumerate(g.index):
             boat = sc.boats[i]
             model = boat.params.buoyancy

@@ -4,6 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
 
 from boat_dynamics.boat import BoatInputs, evaluate_forces, initial_state, reference_pose, step
 from boat_dynamics.mesh_buoyancy import clip_submerged, hydrostatics
@@ -114,3 +117,33 @@ def test_out_of_the_water_no_force(boat_factory):
     params = boat_factory(model="mesh")
     forces = evaluate_forces(params, initial_state(params, [0, 0, 5.0]), BoatInputs(), FLAT)
     assert np.all(forces.buoyancy.force == 0.0) and np.all(forces.buoyancy.torque == 0.0)
+
+
+@settings(max_examples=300, deadline=None)
+@given(corners=arrays(np.float64, (4, 3, 3), elements=st.floats(-3, 3)),
+       depths=arrays(np.float64, (4, 3), elements=st.floats(-2, 2)))
+def test_wet_and_dry_parts_tile_each_triangle(corners, depths):
+    # the parts under water (d > 0) and above it (-d > 0) make up the whole triangle: their
+    # vector areas add up to the triangle's, and so do their integrals of d (d linear). A
+    # triangle lying in the surface (d = 0 at every corner) is on neither side.
+    from boat_dynamics.mesh_buoyancy import clip_parts
+
+    assume(np.all(np.any(depths != 0.0, axis=1)))
+
+    def vector_area(p):
+        return 0.5 * np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+
+    whole = vector_area(corners)
+    integral_whole = whole * (depths.sum(axis=1) / 3)[:, None]
+    wet, d_wet, f_wet = clip_parts(corners, depths)
+    dry, d_dry, f_dry = clip_parts(corners, -depths)
+    area = np.zeros((4, 3))
+    integral = np.zeros((4, 3))
+    np.add.at(area, f_wet, vector_area(wet))
+    np.add.at(area, f_dry, vector_area(dry))
+    np.add.at(integral, f_wet, vector_area(wet) * (d_wet.sum(axis=1) / 3)[:, None])
+    np.add.at(integral, f_dry, -vector_area(dry) * (d_dry.sum(axis=1) / 3)[:, None])
+    scale = 1.0 + np.abs(whole).max()
+    np.testing.assert_allclose(area, whole, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(integral, integral_whole, rtol=0, atol=1e-9 * scale)
+    assert np.all(d_wet >= 0.0) and np.all(d_dry >= 0.0)  # each part on its side
