@@ -18,8 +18,11 @@ import numpy as np
 
 from boat_dynamics.boat import BoatInputs, step
 from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step
+from boat_dynamics.process import keep_freed_memory
 from boat_dynamics.scenario import default_scenario_path, load_scenario, parse_scenario
 from ocean_sim.waves import WaveComponent, WaveField, sample_surface
+
+keep_freed_memory()  # as `boatsim` does (see boat_dynamics/process.py)
 
 
 def _best_of(fn, repeats: int) -> float:

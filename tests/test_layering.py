@@ -10,7 +10,7 @@ CORE = [
     "boat_dynamics.control", "boat_dynamics.diagnostics",
     "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.hull_drag",
     "boat_dynamics.fleet", "boat_dynamics.keel", "boat_dynamics.model",
-    "boat_dynamics.mesh_buoyancy",
+    "boat_dynamics.mesh_buoyancy", "boat_dynamics.process",
     "boat_dynamics.propulsion",
     "boat_dynamics.rigid_body", "boat_dynamics.rudder", "boat_dynamics.scenario",
     "boat_dynamics.tuning",

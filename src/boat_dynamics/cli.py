@@ -16,6 +16,10 @@ from collections.abc import Sequence
 # 60-component surface query 1.6x slower on the 2-core reference machine (benchmarks/run.py).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+from boat_dynamics.process import keep_freed_memory
+
+keep_freed_memory()
+
 __all__ = ["main"]
 
 

@@ -410,7 +410,7 @@ def _buoyancy_and_drag(fleet: Fleet, c: Contact, state: FleetState, relative: np
         if drag.viscous or drag.pressure:
             omega_world = np.einsum("bij,bj->bi", rot_g, state.angular_velocity[i])
             flow_body = np.einsum("bij,bj->bi", rot_g, relative[i])
-            centroids = wet.corners.mean(axis=1)
+            centroids = wet.centroids
             flow = flow_body[owner] + cross(omega_world[owner],
                                             centroids - state.position[i][owner])
             speed = np.sqrt(np.einsum("bi,bi->b", relative[i], relative[i]))

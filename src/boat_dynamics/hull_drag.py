@@ -115,6 +115,6 @@ def hull_drag(model: HullDrag, wet: SubmergedTriangles, owner: np.ndarray, count
                  + per_element(model.suction_quadratic, owner) * r * r)
                 * np.power(np.clip(-cos, 0.0, 1.0), per_element(model.suction_falloff, owner)))
         force += ((pull * (cos < 0) - push * (cos > 0)) * areas)[:, None] * normals
-    arms = wet.corners.mean(axis=1) - center_of_mass_world[owner]
+    arms = wet.centroids - center_of_mass_world[owner]
     sums = sum_by_owner(np.concatenate([force, cross(arms, force)], axis=1), owner, count)
     return sums[:, :3], sums[:, 3:]

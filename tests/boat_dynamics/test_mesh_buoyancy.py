@@ -133,10 +133,15 @@ def test_wet_and_dry_parts_tile_each_triangle(corners, depths):
     def vector_area(p):
         return 0.5 * np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
 
+    def clip(d):  # clip_parts takes and gives coordinate-major arrays
+        xyz, part_depths, source = clip_parts(np.ascontiguousarray(corners.transpose(2, 1, 0)),
+                                              np.ascontiguousarray(d.T))
+        return xyz.transpose(2, 1, 0), part_depths.T, source
+
     whole = vector_area(corners)
     integral_whole = whole * (depths.sum(axis=1) / 3)[:, None]
-    wet, d_wet, f_wet = clip_parts(corners, depths)
-    dry, d_dry, f_dry = clip_parts(corners, -depths)
+    wet, d_wet, f_wet = clip(depths)
+    dry, d_dry, f_dry = clip(-depths)
     area = np.zeros((4, 3))
     integral = np.zeros((4, 3))
     np.add.at(area, f_wet, vector_area(wet))
