@@ -321,9 +321,9 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: str, invert: bool
     r = -(s @ w.qad)
     err = np.hypot(r[:, 0], r[:, 1])
     for _ in range(max_iter):
-        active = np.flatnonzero(err > tol)
-        if active.size == 0:
+        if n == 0 or err.max() <= tol:
             break
+        active = np.flatnonzero(err > tol)
         # Most points active: step them all and keep the converged ones as they were, which
         # costs less than (N, M) gathers and scatters (and gives the same numbers).
         full = 2 * active.size > n
@@ -332,19 +332,23 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: str, invert: bool
         jxx, jxy, jyy = 1.0 - j[:, 0], -j[:, 1], 1.0 - j[:, 2]
         det = jxx * jyy - jxy * jxy
         ra = r[rows]
-        ok = det > 1e-6
         step = np.empty_like(ra)
         step[:, 0] = jyy * ra[:, 0] - jxy * ra[:, 1]
         step[:, 1] = jxx * ra[:, 1] - jxy * ra[:, 0]
-        step /= np.where(ok, det, 1.0)[:, None]
-        if not ok.all():
+        if det.min() > 1e-6:
+            step /= det[:, None]
+        else:  # J near singular: the fixed-point step there
+            ok = det > 1e-6
+            step /= np.where(ok, det, 1.0)[:, None]
             step[~ok] = ra[~ok]
         cand = d[rows] - step
         theta = base[rows] + cand @ w.kd
         sa = np.sin(theta)
         rc = cand - sa @ w.qad
         ec = np.hypot(rc[:, 0], rc[:, 1])
-        worse = np.flatnonzero((ec >= err[rows]) & (err[rows] > tol))
+        was = err[rows]
+        worse = (np.flatnonzero((ec >= was) & (was > tol)) if (ec >= was).any()
+                 else np.empty(0, dtype=np.intp))
         if worse.size:  # fixed-point step: shrinks |F| by sum Q k a < 1
             back = worse if full else active[worse]
             cand[worse] = d[back] - ra[worse]
