@@ -42,6 +42,11 @@ _DISCOVERY_PERIOD = 1.0
 #: rclpy rebuilds its wait set on every spin (about 5 ms with 10 boats' entities, measured),
 #: so spinning after every physics step cost as much as the physics.
 _FAST_SPIN_PERIOD = 0.05
+#: ... and spend at most this fraction of the wall time on it: the wait set grows with the
+#: boats (2 command subscriptions each), and with 100 boats a spin took 4 ms per 10 ms step,
+#: more than the physics. With more boats, callbacks are then served less often than every
+#: _FAST_SPIN_PERIOD (0.2 s of wall time with 100 boats).
+_FAST_SPIN_SHARE = 0.1
 
 
 @dataclass(frozen=True)
@@ -225,9 +230,10 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
             if fast and options.lockstep:
                 _spin_pending(executor)
             elif fast:
-                if time.monotonic() >= next_spin:
+                if (now := time.monotonic()) >= next_spin:
                     _spin_pending(executor)
-                    next_spin = time.monotonic() + _FAST_SPIN_PERIOD
+                    spent = time.monotonic() - now
+                    next_spin = now + spent + max(_FAST_SPIN_PERIOD, spent / _FAST_SPIN_SHARE)
             else:
                 step_due = wall0 + clock.t
                 while (remaining := step_due - time.time()) > 0 and not stop.is_set():
