@@ -33,7 +33,9 @@ def _xy(odom):
 def test_thrust_moves_the_boat_forward_and_rudder_turns_it_to_port(boatsim, probe):
     sim = boatsim("run")
     odoms = []
-    probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
+    # a deep queue: the rate is counted below, and a probe starved of CPU for 0.2 s (a loaded
+    # CI machine) must not drop messages from a queue of 10
+    probe.node.create_subscription(Odometry, "/odom", odoms.append, 1000)
     thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
     rudder = probe.node.create_publisher(Float64, "/cmd_rudder", 10)
     probe.spin_until(lambda: len(odoms) > 5, 30.0, "/odom")
