@@ -79,10 +79,11 @@ def clip_parts(xyz: np.ndarray, depths: np.ndarray) -> tuple[np.ndarray, np.ndar
 
     Each triangle's wet corners make a code (0-7) that looks up its parts in a table; the
     waterline points of all three edges are computed for every triangle. The cost is a fixed
-    twenty numpy calls whatever the waterline does (a loop over the cases costs three times
-    more for a few boats). Arrays are coordinate-major, triangles last, so that every
-    element-wise operation runs over long contiguous rows (with (F, 3, 3) arrays numpy would
-    loop over the length-3 axes: 4x slower for 10,000 triangles).
+    twenty numpy calls whatever the waterline does (a branch per case took 2.4x the
+    instructions for 10 box hulls, callgrind). Arrays are coordinate-major, triangles last, so
+    that every element-wise operation runs over long contiguous rows (with (F, 3, 3) arrays
+    numpy loops over a length-3 axis innermost: the edge points of 9,720 triangles took
+    0.9 ms, 0.13 ms in this layout).
 
     Args:
         xyz: (3, 3, F) m, coordinate k of corner j of triangle f at [k, j, f], world frame.
