@@ -26,7 +26,7 @@ import numpy as np
 
 from boat_dynamics.hull import HullMesh
 from boat_dynamics.hull_drag import HullDrag
-from boat_dynamics.wrench import Wrench, sum_by_owner
+from boat_dynamics.wrench import Wrench, cross, sum_by_owner
 
 __all__ = [
     "Hydrostatics",
@@ -129,15 +129,6 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
     return xyz.transpose(2, 1, 0), d.T, normals[source]
 
 
-def _cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(3, T) cross products of (3, T) coordinate-major vectors."""
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
-    return out
-
-
 @dataclass(frozen=True)
 class SubmergedTriangles:
     """The wetted part of one or several hulls, world frame, coordinate-major.
@@ -160,7 +151,7 @@ class SubmergedTriangles:
     @classmethod
     def of(cls, xyz: np.ndarray, depths: np.ndarray, faces: np.ndarray) -> SubmergedTriangles:
         """The parts with their vector areas (e1 x e2) / 2."""
-        return cls(xyz, depths, 0.5 * _cross_rows(xyz[:, 1] - xyz[:, 0], xyz[:, 2] - xyz[:, 0]),
+        return cls(xyz, depths, 0.5 * cross(xyz[:, 1] - xyz[:, 0], xyz[:, 2] - xyz[:, 0], axis=0),
                    faces)
 
     @property
@@ -233,7 +224,7 @@ def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
     per_triangle = np.empty((6, d.shape[1]))
     # force -rho g integral(d dA) n = -rho g (sum d / 3) A n, at the centre of pressure
     per_triangle[:3] = (rho_g_t * dsum * (-1.0 / 3.0)) * vector_area
-    per_triangle[3:] = (rho_g_t * (-1.0 / 12.0)) * _cross_rows(moment, vector_area)
+    per_triangle[3:] = (rho_g_t * (-1.0 / 12.0)) * cross(moment, vector_area, axis=0)
     sums = sum_by_owner(per_triangle.T, owner, count)
     return sums[:, :3], sums[:, 3:]
 
