@@ -4,7 +4,7 @@ A boat step costs a few hundred numpy calls whatever the boat; called per boat, 
 cost (about 1-3 us each) dominates. Here boats that take the same code path (same buoyancy
 model and options, thruster and rudder kinds, ...) form a *group* whose parameters are stacked
 ((B,) and (B, 3) arrays) and whose hull triangles or sample points are concatenated, each
-element tagged with its boat (``owner``); per-boat sums are taken with ``np.bincount``. The
+element tagged with its boat (``owner``); per-boat sums come from ``wrench.sum_by_owner``. The
 rigid-body integration runs once over the whole fleet. Control modes other than ``dynamic``
 (rare, arcade) are applied boat by boat after the integration.
 
