@@ -54,7 +54,9 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--processes", action="store_true",
                      help="run the ocean and each boat's dynamics in processes of their own "
                           "(real time only; --record adds a recorder process)")
-    node = verbs.add_parser("_node", help=argparse.SUPPRESS)
+    # Internal (the --processes children). A sub-parser added without help= stays out of the
+    # verb list; help=argparse.SUPPRESS would print "_node ==SUPPRESS==" there.
+    node = verbs.add_parser("_node")
     node.add_argument("role", choices=("ocean", "boat"))
     node.add_argument("scenario")
     node.add_argument("--boat", default="")
