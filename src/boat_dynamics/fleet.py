@@ -49,6 +49,7 @@ __all__ = [
     "fleet_forces",
     "fleet_step",
     "reference_points",
+    "water_velocities",
 ]
 
 @dataclass(frozen=True)
@@ -323,14 +324,7 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
     b = fleet.count
     rot, touching = _contacts(fleet, state, sea)
     sums = {s: (np.zeros((b, 3)), np.zeros((b, 3))) for s in ("buoyancy", "drag")}
-    water_velocity = np.zeros((b, 3))
-    normals_ref = np.zeros((b, 3))
-    for c in touching:
-        g = c.group
-        water_velocity[g.index] = c.at_reference.velocities
-        normals_ref[g.index] = c.at_reference.normals
-        if g.stokes_drift:
-            water_velocity[g.index] += _stokes(sea.filtered(g.min_wavelength))
+    water_velocity, normals_ref = _at_reference(fleet, touching, sea)
     relative = state.velocity - np.einsum("bji,bj->bi", rot, water_velocity)  # body frame
     for c in touching:
         _buoyancy_and_drag(fleet, c, state, relative, sums)
@@ -346,6 +340,33 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
     buoy, drag = (Wrench(*sums[s]) for s in ("buoyancy", "drag"))
     total = buoy + damp + drag + push + steer + weight
     return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
+
+
+def water_velocities(fleet: Fleet, state: FleetState, sea: WaveField) -> np.ndarray:
+    """(B, 3) m/s, world frame: the water each boat's damping is taken against.
+
+    The velocity of the surface water particle at the boat's hull reference point, plus the
+    sea's Stokes drift for boats with ``stokes_drift``.
+    """
+    return _at_reference(fleet, _contacts(fleet, state, sea)[1], sea)[0]
+
+
+def _at_reference(fleet: Fleet, touching: list[Contact], sea: WaveField
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Water velocity and surface normal at the boats' hull reference points.
+
+    Returns:
+        (B, 3) m/s, :func:`water_velocities`, and (B, 3) unit normals; world frame.
+    """
+    water_velocity = np.zeros((fleet.count, 3))
+    normals = np.zeros((fleet.count, 3))
+    for c in touching:
+        g = c.group
+        water_velocity[g.index] = c.at_reference.velocities
+        normals[g.index] = c.at_reference.normals
+        if g.stokes_drift:
+            water_velocity[g.index] += _stokes(sea.filtered(g.min_wavelength))
+    return water_velocity, normals
 
 
 def reference_points(fleet: Fleet, state: FleetState) -> tuple[np.ndarray, np.ndarray]:

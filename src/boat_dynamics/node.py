@@ -34,6 +34,7 @@ from boat_dynamics.fleet import (
     fleet_step,
     reference_points,
 )
+from boat_dynamics.rigid_body import rotation_matrix
 from boat_dynamics.scenario import BoatSpec, Scenario
 from boat_dynamics.wrench import cross
 from boat_msgs_py import names
@@ -195,10 +196,12 @@ class DynamicsNode(Node):
                 COMMAND_QOS))
             if self._tap is not None:  # recorded here, at the simulation time they arrive
                 self._tap.topics.update({thrust_topic, rudder_topic})
-        pos, _ = reference_pose(spec.params, spec.initial)
+        pos, q = reference_pose(spec.params, spec.initial)
+        vel = rotation_matrix(q) @ spec.initial.velocity
         self.get_logger().info(
             f"boat {label}: mass {spec.params.mass:g} kg, start at "
-            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m; publishing "
+            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the water at "
+            f"({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
             f"{names.boat_topic(spec.name, names.ODOM)}")
         return boat
 
