@@ -18,9 +18,9 @@ from boat_dynamics.fleet import (
     Fleet,
     FleetInputs,
     FleetState,
+    afloat_velocities,
     fleet_forces,
     fleet_step,
-    water_velocities,
 )
 from boat_dynamics.model import (
     BoatInputs,
@@ -38,9 +38,9 @@ __all__ = [
     "BoatParams",
     "BoatState",
     "Forces",
+    "afloat",
     "evaluate_forces",
     "initial_state",
-    "moving_with_the_water",
     "reference_pose",
     "step",
     "step_many",
@@ -61,34 +61,37 @@ def _fleet(params: Sequence[BoatParams]) -> Fleet:
     return fleet
 
 
-def moving_with_the_water(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
-    """``state`` with the velocity of the water at its hull reference point (body frame).
+def afloat(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
+    """``state`` with the velocity a boat has after floating a while in these waves.
 
-    A boat that has been afloat in the waves moves with the water around it. Released at rest
-    over ground instead, it starts with the opposite of the water's orbital velocity (up to
-    Q a omega per component) relative to the water, and with quadratic surge drag alone that
-    offset decays only as 1/t. In one trochoidal wave (a 0.4 m, wavelength 40 m, Q 1) the
-    default 4 m box released at rest at a crest still drifts 0.27 m/s against the waves
-    10-40 s later; released with the water, 0.005 m/s (Gerstner particles move on closed
-    orbits: no mean drift). Tested in tests/boat_dynamics/test_boat.py.
+    Released at rest over ground, a boat in waves lacks the orbital velocity its buoyancy
+    would give it, and with quadratic surge drag alone (the derived damping) it keeps that
+    offset as a drift for minutes, decaying as 1/t. So a boat starts with
+    :func:`boat_dynamics.fleet.afloat_velocities`: vertically the water's; horizontally the
+    slope-driven orbital velocity of linear theory for the models pushed along the surface
+    (``mesh``, sample points along the ``normal``), none for sample points pushed ``up``.
+    Measured (tests/boat_dynamics/test_boat.py), the default 4 m box, derived damping, mean
+    drift 10-40 s after the start:
 
-    With Q < 1 part of the offset stays: the hydrostatic pressure on the hull drives it on the
-    orbit of linear theory (horizontal amplitude a), while the Gerstner water moves on Q a.
+    - one trochoidal wave (a 0.4 m, wavelength 40 m, Q 1: closed particle orbits, no drift):
+      +0.005 and +0.002 m/s (released at a crest, in a trough); at rest -0.27 and +0.29;
+    - a 0.3 m, wavelength 25 m, Q 0.5: 0.017 m/s; with the Gerstner water's velocity
+      (Q a omega) 0.11; at rest 0.22.
 
     Args:
         params: the boat.
-        state: its state; the angular velocity is kept.
-        sea: the wave field, sampled at ``state.t`` as the boat's damping samples it (its
-            wave filter, precision and Stokes drift option).
+        state: its state; position, attitude and angular velocity are kept.
+        sea: the wave field at ``state.t``, sampled as the boat's forces sample it (its wave
+            filter and precision).
 
     Returns:
-        The state with ``velocity`` = R^T v_water; ``state`` itself in still water.
+        The state with that velocity (body frame); zero in still water.
     """
-    water = water_velocities(_fleet([params]), FleetState.stack([state]), sea)[0]
-    if not np.any(water):
-        return state
+    world = afloat_velocities(_fleet([params]), FleetState.stack([state]), sea)[0]
+    if not np.any(world):  # exactly zero (no -0.0 from the rotation)
+        return replace(state, velocity=np.zeros(3))
     rot = rotation_matrix(state.orientation)
-    return replace(state, velocity=rot.T @ water)
+    return replace(state, velocity=rot.T @ world)
 
 
 def evaluate_forces(

@@ -37,7 +37,13 @@ from boat_dynamics.propulsion import lagged_throttle, thrust
 from boat_dynamics.rigid_body import integrate, rotation_matrix
 from boat_dynamics.rudder import rudder_wrench
 from boat_dynamics.wrench import Wrench, cross
-from ocean_sim.waves import SurfaceSample, WaveField, sample_surface, stokes_drift
+from ocean_sim.waves import (
+    SurfaceSample,
+    WaveField,
+    sample_surface,
+    slope_orbit_velocity,
+    stokes_drift,
+)
 
 __all__ = [
     "Contact",
@@ -45,11 +51,11 @@ __all__ = [
     "FleetForces",
     "FleetInputs",
     "FleetState",
+    "afloat_velocities",
     "contacts",
     "fleet_forces",
     "fleet_step",
     "reference_points",
-    "water_velocities",
 ]
 
 @dataclass(frozen=True)
@@ -342,13 +348,24 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
     return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
 
 
-def water_velocities(fleet: Fleet, state: FleetState, sea: WaveField) -> np.ndarray:
-    """(B, 3) m/s, world frame: the water each boat's damping is taken against.
+def afloat_velocities(fleet: Fleet, state: FleetState, sea: WaveField) -> np.ndarray:
+    """(B, 3) m/s, world frame: the velocity each boat has when it has been afloat a while.
 
-    The velocity of the surface water particle at the boat's hull reference point, plus the
-    sea's Stokes drift for boats with ``stokes_drift``.
+    Vertically, the surface water's at the hull reference point. Horizontally, what the
+    boat's buoyancy gives it: the slope's push for the models whose force follows the surface
+    (``mesh``, ``sample_points`` along the ``normal``), the orbital velocity of
+    :func:`ocean_sim.waves.slope_orbit_velocity`; none for sample points pushed straight
+    ``up``, which the waves do not move sideways.
     """
-    return _at_reference(fleet, _contacts(fleet, state, sea)[1], sea)[0]
+    out = np.zeros((fleet.count, 3))
+    for c in _contacts(fleet, state, sea)[1]:
+        g = c.group
+        at = c.at_reference
+        out[g.index, 2] = at.velocities[:, 2]
+        if g.mesh is not None or g.points.direction == "normal":
+            out[g.index, :2] = slope_orbit_velocity(sea.filtered(g.min_wavelength),
+                                                    at.rest_xy, state.t)
+    return out
 
 
 def _at_reference(fleet: Fleet, touching: list[Contact], sea: WaveField
@@ -356,7 +373,9 @@ def _at_reference(fleet: Fleet, touching: list[Contact], sea: WaveField
     """Water velocity and surface normal at the boats' hull reference points.
 
     Returns:
-        (B, 3) m/s, :func:`water_velocities`, and (B, 3) unit normals; world frame.
+        (B, 3) m/s, the water the damping is taken against (the surface water particle's
+        velocity, plus the sea's Stokes drift for boats with ``stokes_drift``), and (B, 3)
+        unit normals; world frame.
     """
     water_velocity = np.zeros((fleet.count, 3))
     normals = np.zeros((fleet.count, 3))

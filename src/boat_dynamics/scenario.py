@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from boat_dynamics.boat import moving_with_the_water
+from boat_dynamics.boat import afloat
 from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.commands import CommandScript
 from boat_dynamics.control import CONTROL_MODES, ControlSettings
@@ -508,8 +508,8 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, sea: WaveField, lone: boo
     if ratio is not None or "quadratic" not in dd:
         params = _default_damping(params, dd, ratio, offset)
     params = replace(params, control=replace(control, height_offset=offset))
-    # afloat in the waves already: moving with the water at t = 0, not at rest over ground
-    initial = moving_with_the_water(params, initial_state(
+    # afloat in the waves already at t = 0, not released at rest over ground
+    initial = afloat(params, initial_state(
         params,
         _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
         roll=math.radians(_number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),

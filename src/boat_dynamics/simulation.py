@@ -21,7 +21,7 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor, T
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 
-from boat_dynamics.boat import moving_with_the_water, reference_pose
+from boat_dynamics.boat import afloat, reference_pose
 from boat_dynamics.node import DynamicsNode, SimClock
 from boat_dynamics.recording import BagWriter, RecordError, TopicRecorder
 from boat_dynamics.rigid_body import quat_to_euler
@@ -156,10 +156,9 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     if options.epoch is not None and not fast:  # joining a run that started at the epoch
         clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
     if options.role == "boat":
-        # joining at clock.t: the boat moves with the water there, as the scenario's boats do
-        # at t = 0
+        # joining at clock.t: afloat there, as the scenario's boats are at t = 0
         scenario = replace(scenario, boats=tuple(
-            replace(b, initial=moving_with_the_water(b.params, replace(b.initial, t=clock.t),
+            replace(b, initial=afloat(b.params, replace(b.initial, t=clock.t),
                                                      scenario.sea))
             for b in scenario.boats if b.name == options.boat))
     bag = BagWriter(options.record) if options.record else None

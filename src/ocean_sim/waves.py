@@ -40,6 +40,7 @@ __all__ = [
     "displace",
     "find_rest_positions",
     "sample_surface",
+    "slope_orbit_velocity",
     "stokes_drift",
     "surface_height",
 ]
@@ -494,6 +495,31 @@ def sample_surface(
 def surface_height(wf: WaveField, xy: np.ndarray, t: float, **options: object) -> np.ndarray:
     """Surface elevation (N,) m at world points (N, 2) m; options as :func:`sample_surface`."""
     return sample_surface(wf, xy, t, **options).heights
+
+
+def slope_orbit_velocity(wf: WaveField, rest_xy: np.ndarray, t: float) -> np.ndarray:
+    """Horizontal velocity, (N, 2) m/s, that the surface slope gives a small floating body.
+
+    A body floating on hydrostatic pressure is pushed sideways by -m g grad(eta); to first
+    order in the slope, grad(eta) = -sum_i k_i a_i D_i sin(theta_i), so in its periodic motion
+    on the waves it moves with u = sum_i (g k_i a_i / omega_i) D_i cos(theta_i), the surface
+    orbital velocity of linear (Airy) theory, a_i omega_i / tanh(k_i h) per component
+    (Dean & Dalrymple 1991, eq. 4.11 at z = 0). The Gerstner particle itself moves with
+    Q_i a_i omega_i D_i cos(theta_i): the two agree for Q = 1 in deep water.
+
+    Args:
+        wf: the sea state.
+        rest_xy: (N, 2) m, the rest positions p0 of the surface particles where the bodies
+            float (:attr:`SurfaceSample.rest_xy`).
+        t: simulation time, s.
+    """
+    p0 = np.asarray(rest_xy, dtype=float).reshape(-1, 2)
+    if not wf.components:
+        return np.zeros((p0.shape[0], 2))
+    ar = wf.arrays
+    amplitude = wf.gravity * ar.k * ar.a / ar.omega
+    cos_theta = np.cos(p0 @ ar.kd + _time_phase(wf, t))
+    return cos_theta @ (amplitude[:, None] * np.stack([ar.dx, ar.dy], axis=1))
 
 
 def stokes_drift(wf: WaveField, depth_below_surface: float = 0.0) -> np.ndarray:

@@ -15,6 +15,7 @@ from ocean_sim.waves import (
     displace,
     find_rest_positions,
     sample_surface,
+    slope_orbit_velocity,
     stokes_drift,
     surface_height,
 )
@@ -219,6 +220,30 @@ def test_stokes_drift_closed_form():
     expected = ws * k * a * a * math.cosh(2 * k * h) / (2 * math.sinh(k * h) ** 2)
     assert stokes_drift(shallow)[0] == pytest.approx(expected, rel=1e-12)
     assert stokes_drift(WaveField()).tolist() == [0.0, 0.0]
+
+
+def test_slope_orbit_velocity_is_the_time_integral_of_the_slope_push():
+    # du/dt at a fixed particle = -g grad_p0 z(p0, t): the push of the slope (first order),
+    # on a finite-depth sea with omega^2 = g k tanh(k h)
+    p0 = np.random.default_rng(8).uniform(-40, 40, size=(20, 2))
+    t, h = 3.7, 1e-4
+    du_dt = (slope_orbit_velocity(STEEP_SEA, p0, t + h)
+             - slope_orbit_velocity(STEEP_SEA, p0, t - h)) / (2 * h)
+
+    def z(p):
+        return displace(STEEP_SEA, p, t)[:, 2]
+
+    grad = np.stack([(z(p0 + [h, 0.0]) - z(p0 - [h, 0.0])) / (2 * h),
+                     (z(p0 + [0.0, h]) - z(p0 - [0.0, h])) / (2 * h)], axis=1)
+    np.testing.assert_allclose(du_dt, -STEEP_SEA.gravity * grad, atol=2e-6)
+    assert np.abs(du_dt).max() > 1.0  # a real push
+    # deep water, Q = 1: the Gerstner particle's own velocity; Q = 0.5: twice it
+    for q in (1.0, 0.5):
+        deep = WaveField((WaveComponent(0.5, 30.0, 0.7, q, 0.2),))
+        sample = sample_surface(deep, p0, t)
+        np.testing.assert_allclose(slope_orbit_velocity(deep, sample.rest_xy, t),
+                                   sample.velocities[:, :2] / q, atol=1e-12)
+    assert slope_orbit_velocity(WaveField(), p0, t).tolist() == np.zeros((20, 2)).tolist()
 
 
 def test_unknown_precision_is_refused():
