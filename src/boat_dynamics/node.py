@@ -200,7 +200,7 @@ class DynamicsNode(Node):
         vel = rotation_matrix(q) @ spec.initial.velocity
         self.get_logger().info(
             f"boat {label}: mass {spec.params.mass:g} kg, start at "
-            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, afloat at "
+            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the waves at "
             f"({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
             f"{names.boat_topic(spec.name, names.ODOM)}")
         return boat

@@ -158,8 +158,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     if options.role == "boat":
         # joining at clock.t: afloat there, as the scenario's boats are at t = 0
         scenario = replace(scenario, boats=tuple(
-            replace(b, initial=afloat(b.params, replace(b.initial, t=clock.t),
-                                                     scenario.sea))
+            replace(b, initial=afloat(b.params, replace(b.initial, t=clock.t), scenario.sea))
             for b in scenario.boats if b.name == options.boat))
     bag = BagWriter(options.record) if options.record else None
     tap = bag.tap(clock.stamp_ns) if bag is not None else None
