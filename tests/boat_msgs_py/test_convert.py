@@ -1,0 +1,73 @@
+"""Conversions between the numpy core and ROS messages (no ROS graph needed)."""
+
+import math
+
+import pytest
+from boat_msgs.msg import WaveComponent as WaveComponentMsg
+from boat_msgs.msg import WaveField as WaveFieldMsg
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from boat_msgs_py.convert import (
+    diagnostic_array,
+    seconds_to_time,
+    time_to_seconds,
+    wave_field_from_msg,
+    wave_field_to_msg,
+)
+from ocean_sim.waves import InvalidSeaStateError, WaveComponent, WaveField
+
+
+@settings(max_examples=300, deadline=None)
+@given(seconds=st.floats(min_value=0.0, max_value=2.0e9, allow_nan=False))
+def test_time_round_trip_keeps_the_nanosecond(seconds):
+    stamp = seconds_to_time(seconds)
+    assert 0 <= stamp.nanosec < 1_000_000_000 and stamp.sec >= 0
+    # exact to the nanosecond, or to the float's own resolution for large times
+    assert abs(time_to_seconds(stamp) - seconds) <= max(0.5e-9, 2 * math.ulp(seconds))
+
+
+def test_time_carries_into_the_second():
+    stamp = seconds_to_time(1.9999999999)  # rounds to 2 s, not 1 s + 1e9 ns
+    assert (stamp.sec, stamp.nanosec) == (2, 0)
+
+
+components = st.builds(
+    WaveComponent,
+    amplitude=st.floats(0.0, 0.15),
+    wavelength=st.floats(5.0, 200.0),
+    direction=st.floats(-math.pi, math.pi),
+    steepness=st.floats(0.0, 1.0),
+    phase=st.floats(0.0, 2 * math.pi),
+)
+
+
+@settings(max_examples=100, deadline=None)
+@given(comps=st.lists(components, max_size=5), depth=st.sampled_from([math.inf, 12.5, 300.0]),
+       gravity=st.floats(9.0, 10.0))
+def test_wave_field_round_trip_is_exact(comps, depth, gravity):
+    # sum Q k a <= 5 x 1 x (2 pi / 5 m) x 0.15 m = 0.94: always a valid sea
+    sea = WaveField(tuple(comps), gravity=gravity, depth=depth)
+    msg = wave_field_to_msg(sea, seconds_to_time(12.5))
+    assert msg.header.frame_id == "world" and msg.header.stamp.sec == 12
+    assert wave_field_from_msg(msg) == sea
+
+
+def test_an_invalid_wave_field_message_is_refused_naming_the_field():
+    msg = WaveFieldMsg(gravity=9.81, depth=math.inf, components=[
+        WaveComponentMsg(amplitude=0.5, wavelength=-3.0, direction=0.0, steepness=0.5,
+                         phase=0.0)])
+    with pytest.raises(InvalidSeaStateError, match=r"components\[0\]\.wavelength"):
+        wave_field_from_msg(msg)
+
+
+def test_diagnostic_array_keeps_level_name_message_and_values():
+    arr = diagnostic_array(seconds_to_time(3.0), [
+        ("boatsim: alpha", 1, "submerged", (("draft_m", "0.51"), ("gm_m", "0.42"))),
+        ("boatsim: bravo", 0, "ok", ())])
+    assert [s.name for s in arr.status] == ["boatsim: alpha", "boatsim: bravo"]
+    alpha = arr.status[0]
+    assert alpha.level == b"\x01" and alpha.message == "submerged"
+    assert alpha.hardware_id == "boatsim: alpha"
+    assert [(v.key, v.value) for v in alpha.values] == [("draft_m", "0.51"), ("gm_m", "0.42")]
+    assert arr.status[1].values == []
