@@ -10,15 +10,12 @@ rclpy.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
-
-import numpy as np
 
 from boat_dynamics.fleet import (
     Fleet,
     FleetInputs,
     FleetState,
-    afloat_velocities,
+    fleet_afloat,
     fleet_forces,
     fleet_step,
 )
@@ -30,7 +27,6 @@ from boat_dynamics.model import (
     initial_state,
     reference_pose,
 )
-from boat_dynamics.rigid_body import rotation_matrix
 from ocean_sim.waves import WaveField
 
 __all__ = [
@@ -66,8 +62,8 @@ def afloat(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
 
     Released at rest over ground, a boat in waves lacks the orbital velocity its buoyancy
     would give it, and with quadratic surge drag alone (the derived damping) it keeps that
-    offset as a drift for minutes, decaying as 1/t. So a boat starts with
-    :func:`boat_dynamics.fleet.afloat_velocities`: vertically the water's; horizontally the
+    offset as a drift for minutes, decaying as 1/t. So a boat starts with the velocity of
+    :func:`boat_dynamics.fleet.fleet_afloat`: vertically the water's; horizontally the
     slope-driven orbital velocity of linear theory for the models pushed along the surface
     (``mesh``, sample points along the ``normal``), none for sample points pushed ``up``.
     Measured (tests/boat_dynamics/test_boat.py), the default 4 m box, derived damping, mean
@@ -87,11 +83,7 @@ def afloat(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
     Returns:
         The state with that velocity (body frame); zero in still water.
     """
-    world = afloat_velocities(_fleet([params]), FleetState.stack([state]), sea)[0]
-    if not np.any(world):  # exactly zero (no -0.0 from the rotation)
-        return replace(state, velocity=np.zeros(3))
-    rot = rotation_matrix(state.orientation)
-    return replace(state, velocity=rot.T @ world)
+    return fleet_afloat(_fleet([params]), FleetState.stack([state]), sea).boat(0)
 
 
 def evaluate_forces(

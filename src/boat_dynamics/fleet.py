@@ -51,8 +51,8 @@ __all__ = [
     "FleetForces",
     "FleetInputs",
     "FleetState",
-    "afloat_velocities",
     "contacts",
+    "fleet_afloat",
     "fleet_forces",
     "fleet_step",
     "reference_points",
@@ -348,24 +348,27 @@ def fleet_forces(fleet: Fleet, state: FleetState, inputs: FleetInputs, sea: Wave
     return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
 
 
-def afloat_velocities(fleet: Fleet, state: FleetState, sea: WaveField) -> np.ndarray:
-    """(B, 3) m/s, world frame: the velocity each boat has when it has been afloat a while.
+def fleet_afloat(fleet: Fleet, state: FleetState, sea: WaveField) -> FleetState:
+    """``state`` with each boat's velocity set to what it has after floating a while.
 
     Vertically, the surface water's at the hull reference point. Horizontally, what the
     boat's buoyancy gives it: the slope's push for the models whose force follows the surface
     (``mesh``, ``sample_points`` along the ``normal``), the orbital velocity of
     :func:`ocean_sim.waves.slope_orbit_velocity`; none for sample points pushed straight
-    ``up``, which the waves do not move sideways.
+    ``up``, which the waves do not move sideways. Exactly zero in still water. Position,
+    attitude and angular velocity are kept (see :func:`boat_dynamics.boat.afloat`).
     """
-    out = np.zeros((fleet.count, 3))
+    world = np.zeros((fleet.count, 3))
     for c in _contacts(fleet, state, sea)[1]:
         g = c.group
         at = c.at_reference
-        out[g.index, 2] = at.velocities[:, 2]
+        world[g.index, 2] = at.velocities[:, 2]
         if g.mesh is not None or g.points.direction == "normal":
-            out[g.index, :2] = slope_orbit_velocity(sea.filtered(g.min_wavelength),
-                                                    at.rest_xy, state.t)
-    return out
+            world[g.index, :2] = slope_orbit_velocity(sea.filtered(g.min_wavelength),
+                                                      at.rest_xy, state.t)
+    body = np.einsum("bji,bj->bi", rotation_matrix(state.orientation), world)
+    body[~world.any(axis=1)] = 0.0  # still water: +0.0, not the rotation's -0.0
+    return replace(state, velocity=body)
 
 
 def _at_reference(fleet: Fleet, touching: list[Contact], sea: WaveField

@@ -16,10 +16,10 @@ from typing import Any
 import numpy as np
 import yaml
 
-from boat_dynamics.boat import afloat
 from boat_dynamics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.commands import CommandScript
 from boat_dynamics.control import CONTROL_MODES, ControlSettings
+from boat_dynamics.fleet import Fleet, FleetState, fleet_afloat
 from boat_dynamics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.hull_drag import HullDrag
 from boat_dynamics.mesh_buoyancy import MeshBuoyancy
@@ -339,7 +339,7 @@ _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "b
               "inertia_scale", "inertia_products")
 
 
-def _boat(raw: Any, key: str, sim: SimulationSettings, sea: WaveField, lone: bool,
+def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
           base_dir: Path) -> BoatSpec:
     d = _mapping(raw, key)
     _only(d, key, _BOAT_KEYS)
@@ -508,14 +508,13 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, sea: WaveField, lone: boo
     if ratio is not None or "quadratic" not in dd:
         params = _default_damping(params, dd, ratio, offset)
     params = replace(params, control=replace(control, height_offset=offset))
-    # afloat in the waves already at t = 0, not released at rest over ground
-    initial = afloat(params, initial_state(
+    initial = initial_state(
         params,
         _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
         roll=math.radians(_number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),
         pitch=math.radians(_number(idd, "pitch_deg", ik, 0.0, -90.0, 90.0, unit="deg")),
         yaw=math.radians(_number(idd, "yaw_deg", ik, 0.0, -360.0, 360.0, unit="deg")),
-    ), sea)
+    )
     return BoatSpec(name=name, params=params, initial=initial,
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
 
@@ -680,10 +679,14 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
         raise ScenarioError("boats", boats_raw, "must be a non-empty list of boats")
     lone = len(boats_raw) == 1
     base = Path.cwd() if base_dir is None else base_dir
-    boats = tuple(_boat(b, f"boats[{i}]", sim, sea, lone, base)
-                  for i, b in enumerate(boats_raw))
+    boats = tuple(_boat(b, f"boats[{i}]", sim, lone, base) for i, b in enumerate(boats_raw))
     names = [b.name for b in boats]
     for i, n in enumerate(names):
         if names.index(n) != i:
             raise ScenarioError(f"boats[{i}].name", n, "must be unique among the boats")
+    # afloat in the waves already at t = 0, not released at rest over ground (one surface
+    # query for all boats)
+    afloat = fleet_afloat(Fleet([b.params for b in boats]),
+                          FleetState.stack([b.initial for b in boats]), sea)
+    boats = tuple(replace(b, initial=afloat.boat(i)) for i, b in enumerate(boats))
     return Scenario(simulation=sim, sea=sea, boats=boats, source=source)
