@@ -16,11 +16,12 @@ import time
 
 import numpy as np
 
-from boat_dynamics.boat import BoatInputs, step
-from boat_dynamics.fleet import Fleet, FleetInputs, FleetState, fleet_step
+from boat_dynamics.physics import pipeline
+from boat_dynamics.physics.boat import BoatInputs
+from boat_dynamics.physics.scenario import default_scenario_path, load_scenario, parse_scenario
+from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from boat_dynamics.process import keep_freed_memory
-from boat_dynamics.scenario import default_scenario_path, load_scenario, parse_scenario
-from ocean_sim.waves import WaveComponent, WaveField, sample_surface
+from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
 
 keep_freed_memory()  # as `boatsim` does (see boat_dynamics/process.py)
 
@@ -67,8 +68,9 @@ def bench_waves() -> None:
 def bench_boat_step() -> None:
     """Microseconds per boat-step with 16 wave components, per buoyancy model.
 
-    Two figures per hull: one boat stepped alone (``boat.step``), and the cost per boat when a
-    fleet of identical boats is stepped together (``fleet.fleet_step``, what the dynamics node
+    Two figures per hull: one boat stepped alone (a one-boat System, as the node steps a lone
+    boat), and the cost per boat when a
+    fleet of identical boats is stepped together (``pipeline.step``, what the dynamics node
     does), where numpy's per-call cost is shared by all boats.
     """
     print("== boat step, 16 wave components, float32 surface queries (the scenario default): "
@@ -84,13 +86,16 @@ def bench_boat_step() -> None:
     for label, boat, fleet_sizes in cases:
         sc = parse_scenario({"boats": [boat]})
         params, initial = sc.boats[0].params, sc.boats[0].initial
-        state = [initial]
         n = 20 if "972" in label else 50
 
-        def alone(params=params, state=state, n=n):
+        one = System.build([params])
+        state = [FleetState.stack([initial])]
+        one_input = FleetInputs.stack([inputs])
+
+        def alone(one=one, state=state, n=n, one_input=one_input):
             s = state[0]
             for _ in range(n):
-                s = step(params, s, inputs, sea, 0.01)
+                s = pipeline.step(one, s, one_input, sea, 0.01).state
             state[0] = s
 
         alone()  # settle from the release first, then time chunks of steps
@@ -100,7 +105,7 @@ def bench_boat_step() -> None:
             fleet_sc = parse_scenario({"boats": [
                 {**boat, "name": f"b{i}", "initial_pose": {"position": [
                     12.0 * (i % side), 12.0 * (i // side), 0.0]}} for i in range(fleet_size)]})
-            fleet = Fleet([b.params for b in fleet_sc.boats])
+            fleet = System.build([b.params for b in fleet_sc.boats])
             fleet_state = [FleetState.stack([b.initial for b in fleet_sc.boats])]
             commands = FleetInputs.stack([inputs] * fleet_size)
             m = 5 if "972" in label else 10
@@ -108,7 +113,7 @@ def bench_boat_step() -> None:
             def together(fleet=fleet, fleet_state=fleet_state, commands=commands, m=m):
                 s = fleet_state[0]
                 for _ in range(m):
-                    s, _ = fleet_step(fleet, s, commands, sea, 0.01)
+                    s = pipeline.step(fleet, s, commands, sea, 0.01).state
                 fleet_state[0] = s
 
             together()
@@ -144,7 +149,7 @@ def bench_run(seconds: float, boats: int) -> None:
     import io
     import re
 
-    from boat_dynamics.simulation import RunOptions, run
+    from boat_dynamics.ros.runner import RunOptions, run
 
     _quiet_nodes()
     sc = parse_scenario(_fleet(boats)) if boats > 1 else load_scenario(default_scenario_path())
@@ -168,8 +173,8 @@ def bench_phases(seconds: float, boats: int) -> None:
     """
     import io
 
-    from boat_dynamics import node as node_module
-    from boat_dynamics import simulation
+    from boat_dynamics.ros import node as node_module
+    from boat_dynamics.ros import runner as simulation
 
     _quiet_nodes()
     spent: dict[str, float] = {}
@@ -188,7 +193,7 @@ def bench_phases(seconds: float, boats: int) -> None:
         return original
 
     patches = [
-        (node_module, "fleet_step", "physics (fleet_step)"),
+        (pipeline, "step", "physics (pipeline.step)"),
         (node_module, "fleet_reports", "/diagnostics reports"),
         (node_module.DynamicsNode, "_publish_states", "odom, pose, twist"),
         (node_module.DynamicsNode, "_publish_wrenches", "wrench/*"),

@@ -1,29 +1,88 @@
-"""The physics core never imports rclpy (DESIGN.md: two layers, strictly)."""
+"""The two layers (docs/DESIGN.md, "Layers"), checked on the tree itself.
 
+- The physics trees (``boat_dynamics/physics``, ``ocean_sim/physics``) never import rclpy,
+  rosbags, the ROS message packages or the ROS side of boatsim, at module level or inside
+  functions (read from the source, so a function-level import is caught without running it).
+- Importing every physics module loads none of them (run in a fresh interpreter).
+- Topic names and QoS profiles are spelled only in ``boat_msgs_py``.
+"""
+
+import ast
 import subprocess
 import sys
+from pathlib import Path
 
-CORE = [
-    "ocean_sim.constants", "ocean_sim.spectra", "ocean_sim.waves",
-    "boat_dynamics.bags", "boat_dynamics.boat", "boat_dynamics.buoyancy",
-    "boat_dynamics.commands", "boat_dynamics.plot",
-    "boat_dynamics.control", "boat_dynamics.diagnostics",
-    "boat_dynamics.damping", "boat_dynamics.hull", "boat_dynamics.hull_drag",
-    "boat_dynamics.fleet", "boat_dynamics.keel", "boat_dynamics.model",
-    "boat_dynamics.mesh_buoyancy", "boat_dynamics.process",
-    "boat_dynamics.propulsion",
-    "boat_dynamics.rigid_body", "boat_dynamics.rudder", "boat_dynamics.scenario",
-    "boat_dynamics.tuning",
-    "boat_dynamics.wrench",
-]
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PHYSICS = [SRC / "boat_dynamics" / "physics", SRC / "ocean_sim" / "physics"]
+#: Top-level packages the physics core must not import.
+FORBIDDEN = {"rclpy", "rosbags", "boat_msgs", "boat_msgs_py", "rpyutils", "rosidl_runtime_py",
+             "std_msgs", "geometry_msgs", "nav_msgs", "sensor_msgs", "diagnostic_msgs",
+             "rosgraph_msgs", "builtin_interfaces", "rcl_interfaces", "matplotlib"}
+#: The ROS and tool layers of boatsim itself.
+FORBIDDEN_PREFIXES = ("boat_dynamics.ros", "boat_dynamics.tools", "boat_dynamics.cli",
+                      "ocean_sim.ros")
 
 
-def test_core_modules_do_not_import_rclpy():
+def _modules(root: Path) -> list[str]:
+    return sorted(".".join(p.relative_to(SRC).with_suffix("").parts)
+                  for p in root.rglob("*.py") if p.name != "__init__.py")
+
+
+def imported_names(source: str) -> list[tuple[int, str]]:
+    """(line, module) of every import in ``source``, wherever it stands, and of every
+    ``importlib.import_module("...")`` / ``__import__("...")`` with a literal name."""
+    out = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            out += [(node.lineno, a.name) for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            out.append((node.lineno, node.module))
+        elif (isinstance(node, ast.Call) and node.args
+              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
+              and ((isinstance(node.func, ast.Name) and node.func.id == "__import__")
+                   or (isinstance(node.func, ast.Attribute)
+                       and node.func.attr == "import_module"))):
+            out.append((node.lineno, node.args[0].value))
+    return out
+
+
+def _violations(source: str) -> list[str]:
+    return [f"line {line}: {name}" for line, name in imported_names(source)
+            if name.split(".")[0] in FORBIDDEN
+            or any(name == p or name.startswith(p + ".") for p in FORBIDDEN_PREFIXES)]
+
+
+def test_the_scan_sees_imports_inside_functions():
+    source = ("import numpy\n"
+              "def f():\n"
+              "    from rclpy.node import Node\n"
+              "    import importlib\n"
+              "    importlib.import_module('rosbags.rosbag2')\n"
+              "    class A:\n"
+              "        def g(self):\n"
+              "            import boat_dynamics.ros.node\n")
+    assert _violations(source) == ["line 3: rclpy.node", "line 5: rosbags.rosbag2",
+                                   "line 8: boat_dynamics.ros.node"]
+
+
+@pytest.mark.parametrize("root", PHYSICS, ids=lambda p: str(p.relative_to(SRC)))
+def test_physics_tree_imports_no_ros_anywhere(root):
+    files = sorted(root.rglob("*.py"))
+    assert len(files) >= 4
+    bad = {str(f.relative_to(SRC)): v for f in files
+           if (v := _violations(f.read_text(encoding="utf-8")))}
+    assert bad == {}
+
+
+def test_importing_the_physics_core_loads_no_ros():
+    modules = [m for root in PHYSICS for m in _modules(root)]
+    assert "boat_dynamics.physics.scenario" in modules and "ocean_sim.physics.waves" in modules
     code = (
         "import sys\n"
-        f"for m in {CORE!r}: __import__(m)\n"
-        "bad = sorted(m for m in sys.modules if m.split('.')[0] in "
-        "('rclpy', 'rosbags', 'boat_msgs', 'boat_msgs_py', 'rpyutils'))\n"
+        f"for m in {modules!r}: __import__(m)\n"
+        f"bad = sorted(m for m in sys.modules if m.split('.')[0] in {sorted(FORBIDDEN)!r})\n"
         "print(','.join(bad))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
@@ -31,17 +90,58 @@ def test_core_modules_do_not_import_rclpy():
     assert out.stdout.strip() == ""
 
 
-def test_every_core_module_is_listed():
-    from pathlib import Path
+def test_boat_dynamics_has_only_the_layers_at_its_top():
+    top = sorted(p.name for p in (SRC / "boat_dynamics").iterdir()
+                 if p.name != "__pycache__")
+    # bags.py: the deprecated alias of tools/bags.py (docs/DESIGN.md, "Changes to the contract")
+    assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "physics", "process.py",
+                   "ros", "tools"]
 
-    src = Path(__file__).resolve().parents[1] / "src"
-    adapters = {"ocean_sim.node", "ocean_sim.client", "boat_dynamics.node",
-                "boat_dynamics.simulation",
-                "boat_dynamics.recording", "boat_dynamics.cli", "boat_dynamics.__main__",
-                "boat_dynamics.teleop", "boat_dynamics.replay"}
-    modules = {
-        ".".join(p.relative_to(src).with_suffix("").parts)
-        for pkg in ("ocean_sim", "boat_dynamics") for p in (src / pkg).glob("*.py")
-        if p.name != "__init__.py"
-    }
-    assert modules - adapters == set(CORE)
+
+def test_the_old_compare_bags_import_still_works_and_says_where_it_went():
+    code = ("import warnings\n"
+            "with warnings.catch_warnings(record=True) as w:\n"
+            "    warnings.simplefilter('always')\n"
+            "    from boat_dynamics.bags import compare_bags\n"
+            "from boat_dynamics.tools.bags import compare_bags as new\n"
+            "assert compare_bags is new\n"
+            "print([str(x.message) for x in w if x.category is DeprecationWarning])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert "import boat_dynamics.tools.bags" in out.stdout
+
+
+#: Topic names of the contract (any string literal containing one outside boat_msgs_py is a
+#: second spelling).
+TOPIC_FRAGMENTS = ("/ocean/", "cmd_thrust", "cmd_rudder", "/clock", "/diagnostics",
+                   "/boatsim/", "/rosout", "/parameter_events", "wrench/")
+
+
+def _literals(tree: ast.AST) -> list[tuple[int, str]]:
+    """(line, text) of string literals that are not docstrings."""
+    docstrings = {id(n.body[0].value) for n in ast.walk(tree)
+                  if isinstance(n, ast.Module | ast.ClassDef | ast.FunctionDef)
+                  and n.body and isinstance(n.body[0], ast.Expr)
+                  and isinstance(n.body[0].value, ast.Constant)}
+    return [(n.lineno, n.value) for n in ast.walk(tree)
+            if isinstance(n, ast.Constant) and isinstance(n.value, str)
+            and id(n) not in docstrings]
+
+
+def _is_message(text: str) -> bool:
+    """Text meant for people (a log line, an error, a help string): it has spaces."""
+    return " " in text.strip()
+
+
+def test_topic_names_and_qos_only_in_boat_msgs_py():
+    found = []
+    for f in sorted(SRC.rglob("*.py")):
+        if "boat_msgs_py" in f.parts:
+            continue
+        tree = ast.parse(f.read_text(encoding="utf-8"))
+        where = str(f.relative_to(SRC))
+        found += [f"{where}:{line}: {text!r}" for line, text in _literals(tree)
+                  if not _is_message(text) and any(t in text for t in TOPIC_FRAGMENTS)]
+        found += [f"{where}:{n.lineno}: QoSProfile(...)" for n in ast.walk(tree)
+                  if isinstance(n, ast.Call) and getattr(n.func, "id", None) == "QoSProfile"]
+    assert found == []

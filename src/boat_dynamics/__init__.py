@@ -1,11 +1,10 @@
-"""boat_dynamics: rigid-body boats on Gerstner waves (pure numpy core) and the dynamics node.
+"""boat_dynamics: boats on Gerstner waves, in two layers and the tools around them.
 
-Core modules (never import rclpy): :mod:`~boat_dynamics.boat`, :mod:`~boat_dynamics.rigid_body`,
-:mod:`~boat_dynamics.hull`, one module per force model (:mod:`~boat_dynamics.buoyancy`,
-:mod:`~boat_dynamics.damping`, :mod:`~boat_dynamics.propulsion`, :mod:`~boat_dynamics.rudder`),
-:mod:`~boat_dynamics.commands`, :mod:`~boat_dynamics.scenario`. ROS adapters:
-:mod:`~boat_dynamics.node`, :mod:`~boat_dynamics.simulation`, :mod:`~boat_dynamics.recording`,
-:mod:`~boat_dynamics.cli`.
+- :mod:`boat_dynamics.physics`: the pure numpy core (force models, the fleet step, scenario
+  specs); never imports rclpy or rosbags.
+- :mod:`boat_dynamics.ros`: the dynamics node and the runner (thin ROS 2 adapters).
+- :mod:`boat_dynamics.tools`: record, replay, compare, plot, teleop.
+- :mod:`boat_dynamics.cli`: the ``boatsim`` command.
 """
 
 __all__: list[str] = []

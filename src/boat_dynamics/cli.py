@@ -110,7 +110,7 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _compare(args: argparse.Namespace) -> int:
-    from boat_dynamics.bags import BagError, compare_bags
+    from boat_dynamics.tools.bags import BagError, compare_bags
 
     tolerances = {}
     for item in args.tol:
@@ -144,7 +144,7 @@ def _finite(text: str) -> float:
 
 
 def _query(args: argparse.Namespace) -> int:
-    from ocean_sim.client import OceanUnavailableError, query_surface
+    from ocean_sim.ros.client import OceanUnavailableError, query_surface
 
     if len(args.coords) % 2:
         print(f"boatsim query: error: coordinates come in X Y pairs; got {len(args.coords)} "
@@ -171,9 +171,9 @@ def _query(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
-    from boat_dynamics.recording import RecordError
-    from boat_dynamics.scenario import ScenarioError, default_scenario_path, load_scenario
-    from boat_dynamics.simulation import RunOptions, run
+    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.ros.runner import RunOptions, run
+    from boat_dynamics.tools.recording import RecordError
 
     path = args.scenario or default_scenario_path()
     try:
@@ -192,8 +192,8 @@ def _run(args: argparse.Namespace) -> int:
                   "(one simulation clock across processes is not implemented yet)",
                   file=sys.stderr)
             return 2
-        from boat_dynamics.recording import RecordError
-        from boat_dynamics.simulation import run_processes
+        from boat_dynamics.ros.processes import run_processes
+        from boat_dynamics.tools.recording import RecordError
 
         try:
             return run_processes(scenario, str(path), RunOptions(duration=args.duration,
@@ -224,7 +224,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.verb == "compare":
             return _compare(args)
         if args.verb == "record":
-            from boat_dynamics.recording import RecordError, record
+            from boat_dynamics.tools.recording import RecordError, record
 
             try:
                 return record(args.topics, args.output)
@@ -232,8 +232,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"boatsim record: error: {exc}", file=sys.stderr)
                 return 2
         if args.verb == "plot":
-            from boat_dynamics.bags import BagError
-            from boat_dynamics.plot import plot_bag
+            from boat_dynamics.tools.bags import BagError
+            from boat_dynamics.tools.plot import plot_bag
 
             try:
                 print(f"boatsim: wrote {plot_bag(args.bag, args.output)}")
@@ -242,8 +242,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"boatsim plot: error: {exc}", file=sys.stderr)
                 return 2
         if args.verb == "replay":
-            from boat_dynamics.bags import BagError
-            from boat_dynamics.replay import ReplayError, replay
+            from boat_dynamics.tools.bags import BagError
+            from boat_dynamics.tools.replay import ReplayError, replay
 
             try:
                 return replay(args.bag, args.topics, args.rate, args.timeout)
@@ -251,7 +251,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"boatsim replay: error: {exc}", file=sys.stderr)
                 return 2
         if args.verb == "teleop":
-            from boat_dynamics.teleop import teleop
+            from boat_dynamics.tools.teleop import teleop
 
             return teleop(args.ns)
     except KeyboardInterrupt:

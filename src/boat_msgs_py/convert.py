@@ -19,7 +19,7 @@ from nav_msgs.msg import Odometry
 from std_msgs.msg import Header
 
 from boat_msgs_py.names import WORLD_FRAME
-from ocean_sim.waves import WaveComponent, WaveField
+from ocean_sim.physics.waves import WaveComponent, WaveField
 
 __all__ = [
     "diagnostic_array",

@@ -9,16 +9,20 @@ __all__ = [
     "CLOCK",
     "CMD_RUDDER",
     "CMD_THRUST",
+    "COMMAND_NAMES",
     "DIAGNOSTICS",
     "LOCKSTEP",
     "ODOM",
+    "PARAMETER_EVENTS",
     "POSE",
+    "ROSOUT",
     "SAMPLE_SURFACE",
     "SURFACE_CLOUD",
     "TWIST",
     "WAVE_FIELD",
     "WORLD_FRAME",
     "WRENCH_SOURCES",
+    "boat_of",
     "boat_topic",
     "child_frame",
     "wrench_topic",
@@ -26,6 +30,8 @@ __all__ = [
 
 CMD_THRUST = "cmd_thrust"
 CMD_RUDDER = "cmd_rudder"
+#: The per-boat command names (a replay republishes these topics of a bag).
+COMMAND_NAMES = (CMD_THRUST, CMD_RUDDER)
 ODOM = "odom"
 POSE = "pose"
 TWIST = "twist"
@@ -43,12 +49,25 @@ LOCKSTEP = "/boatsim/lockstep"
 #: diagnostic_msgs/DiagnosticArray, one status per boat.
 DIAGNOSTICS = "/diagnostics"
 
+#: ROS 2's own topics: logs and parameter events (never equal between two runs).
+ROSOUT = "/rosout"
+PARAMETER_EVENTS = "/parameter_events"
+
 WORLD_FRAME = "world"
 
 
 def boat_topic(boat: str, name: str) -> str:
     """Absolute topic of a per-boat name: ``/odom`` for the root boat, ``/<boat>/odom`` else."""
     return f"/{boat}/{name}" if boat else f"/{name}"
+
+
+def boat_of(topic: str, name: str) -> str | None:
+    """The boat whose per-boat ``name`` topic ``topic`` is ("" = root), or None.
+
+    ``boat_of("/alpha/odom", ODOM)`` is ``"alpha"``, ``boat_of("/odom", ODOM)`` is ``""``.
+    """
+    head, sep, tail = topic.rpartition("/")
+    return head.lstrip("/") if sep and tail == name and "/" not in name else None
 
 
 def wrench_topic(boat: str, source: str) -> str:

@@ -12,9 +12,11 @@ __all__ = [
     "CLOCK_QOS",
     "COMMAND_QOS",
     "DIAGNOSTICS_QOS",
+    "RECORD_QOS",
     "STATE_QOS",
     "SURFACE_QOS",
     "WAVE_FIELD_QOS",
+    "latched",
 ]
 
 #: cmd_thrust / cmd_rudder subscriptions: reliable, last 10; matches a plain
@@ -50,3 +52,12 @@ SURFACE_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_LAST, depth=1,
     reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
 )
+
+#: A recorder's subscriptions: reliable, a deep queue (a busy recorder must not drop).
+RECORD_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
+
+
+def latched(qos: QoSProfile) -> QoSProfile:
+    """``qos`` made transient-local: a late subscriber to a latched topic gets its last message."""
+    return QoSProfile(depth=qos.depth, reliability=qos.reliability,
+                      durability=DurabilityPolicy.TRANSIENT_LOCAL)

@@ -1,7 +1,7 @@
 """ocean_sim: the Gerstner sea state (pure numpy) and the ROS 2 ocean node.
 
-The core (:mod:`ocean_sim.waves`, :mod:`ocean_sim.constants`) never imports rclpy;
-:mod:`ocean_sim.node` is the thin ROS adapter.
+The core (:mod:`ocean_sim.physics`: waves, spectra, constants) never imports rclpy;
+:mod:`ocean_sim.ros` holds the ocean node and the client of its surface service.
 """
 
 __all__: list[str] = []

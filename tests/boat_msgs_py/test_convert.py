@@ -15,7 +15,7 @@ from boat_msgs_py.convert import (
     wave_field_from_msg,
     wave_field_to_msg,
 )
-from ocean_sim.waves import InvalidSeaStateError, WaveComponent, WaveField
+from ocean_sim.physics.waves import InvalidSeaStateError, WaveComponent, WaveField
 
 
 @settings(max_examples=300, deadline=None)

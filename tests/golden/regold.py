@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from golden_tools import HERE, record_run, specs
 
-from boat_dynamics.bags import compare_bags
+from boat_dynamics.tools.bags import compare_bags
 
 
 def main() -> int:

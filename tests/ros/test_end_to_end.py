@@ -15,11 +15,11 @@ from geometry_msgs.msg import Point
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Float64
 
-from boat_dynamics.rigid_body import quat_to_euler
+from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_msgs_py import names
 from boat_msgs_py.convert import seconds_to_time, time_to_seconds, wave_field_from_msg
 from boat_msgs_py.qos import WAVE_FIELD_QOS
-from ocean_sim.waves import sample_surface
+from ocean_sim.physics.waves import sample_surface
 
 
 def _yaw(odom):
@@ -344,7 +344,7 @@ def test_processes_refuses_fast_and_an_existing_bag(boatsim, tmp_path):
 
 
 def test_processes_record_every_topic_of_every_process(boatsim, tmp_path):
-    from boat_dynamics.bags import read_bag
+    from boat_dynamics.tools.bags import read_bag
 
     bag = tmp_path / "bag"
     sim = boatsim("run", "scenarios/multi_boat.yaml", "--processes", "--duration", "5",

@@ -13,7 +13,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "golden"))
 
 from golden_tools import HERE, record_run, specs
 
-from boat_dynamics.bags import compare_bags
+from boat_dynamics.tools.bags import compare_bags
 
 #: Absolute tolerance on every field: far below any physical change, far above rounding.
 TOLERANCE = {"*": 1e-6}

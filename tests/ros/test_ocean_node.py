@@ -16,7 +16,7 @@ from sensor_msgs.msg import PointCloud2
 from boat_msgs_py import names
 from boat_msgs_py.convert import time_to_seconds, wave_field_from_msg
 from boat_msgs_py.qos import WAVE_FIELD_QOS
-from ocean_sim.waves import sample_surface
+from ocean_sim.physics.waves import sample_surface
 
 
 def _double_array(name, values):
@@ -171,9 +171,9 @@ def test_diagnostics_and_control_mode_switch_at_run_time(boatsim, probe):
 def test_surface_cloud_of_overlapping_boats_is_one_grid_without_duplicates():
     import rclpy
 
-    from ocean_sim.node import OceanNode
-    from ocean_sim.waves import WaveComponent
-    from ocean_sim.waves import WaveField as Sea
+    from ocean_sim.physics.waves import WaveComponent
+    from ocean_sim.physics.waves import WaveField as Sea
+    from ocean_sim.ros.node import OceanNode
 
     centers = np.array([[0.0, 0.0], [10.3, 0.2], [0.4, -25.0]])
     sea = Sea((WaveComponent(0.3, 20.0, 0.3, 0.6, 0.0),))

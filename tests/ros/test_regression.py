@@ -16,7 +16,7 @@ from rosbags.rosbag2 import StoragePlugin, Writer
 from rosbags.typesys import Stores, get_typestore
 from std_msgs.msg import Float64
 
-from boat_dynamics.bags import compare_bags
+from boat_dynamics.tools.bags import compare_bags
 
 SCRIPTED = """
 ocean: {components: [{amplitude: 0.3, wavelength: 25.0, steepness: 0.5}]}

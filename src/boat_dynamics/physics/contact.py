@@ -1,0 +1,138 @@
+"""Where the hulls meet the water: one surface query and one clip per state, as a value.
+
+:func:`contact` is the only place the boats' geometry meets the sea. The pipeline's forces
+and /diagnostics both read its result; whoever computes it for a state can hand it to
+whatever else needs that state (the dynamics node hands the contact its /diagnostics computed
+to the next step), instead of a cache deciding behind the caller's back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from boat_dynamics.physics.mesh_buoyancy import SubmergedTriangles, clip_hulls
+from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.system import FleetState, Group, System
+from ocean_sim.physics.waves import SurfaceSample, WaveField, sample_surface
+
+__all__ = ["Contact", "GroupContact", "contact", "reference_points"]
+
+
+@dataclass(frozen=True)
+class GroupContact:
+    """Where one group's hulls meet the water.
+
+    Attributes:
+        group: the group.
+        rotation: (G, 3, 3) the group's body-to-world rotations.
+        world: (E, 3) m, its hull vertices or sample points, world frame.
+        depths: (E,) m, their depths below the surface (> 0 = submerged).
+        surface: the surface at those points.
+        at_reference: the surface at the boats' hull reference points.
+        wet: the clipped hull triangles (mesh group; None for sample points).
+        wet_owner: (T,) int, the boat (0..G-1) of each wet triangle (mesh group).
+    """
+
+    group: Group
+    rotation: np.ndarray
+    world: np.ndarray
+    depths: np.ndarray
+    surface: SurfaceSample
+    at_reference: SurfaceSample
+    wet: SubmergedTriangles | None
+    wet_owner: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Where every boat meets the water at one state (see :func:`contact`).
+
+    Attributes:
+        position: (B, 3) m, the state's centres of mass (the very array: a contact belongs to
+            one state).
+        orientation: (B, 4), the state's orientations (likewise).
+        t: s, the state's time.
+        sea: the sea it was sampled from.
+        rotation: (B, 3, 3) body-to-world rotations.
+        groups: one :class:`GroupContact` per group of the system.
+    """
+
+    position: np.ndarray
+    orientation: np.ndarray
+    t: float
+    sea: WaveField
+    rotation: np.ndarray
+    groups: tuple[GroupContact, ...]
+
+    def belongs_to(self, system: System, state: FleetState, sea: WaveField) -> bool:
+        """True if this contact was computed for ``system``, ``state`` and ``sea``.
+
+        The state's very position and orientation arrays: states are never changed in place.
+        """
+        return (self.position is state.position and self.orientation is state.orientation
+                and self.t == state.t and self.sea is sea
+                and len(self.groups) == len(system.groups)
+                and all(c.group is g for c, g in zip(self.groups, system.groups, strict=True)))
+
+
+def reference_points(system: System, state: FleetState) -> tuple[np.ndarray, np.ndarray]:
+    """(B, 3, 3) body-to-world rotations and (B, 3) m world hull reference points."""
+    rot = rotation_matrix(state.orientation)
+    return rot, state.position - np.einsum("bij,bj->bi", rot, system.center_of_mass)
+
+
+def contact(system: System, state: FleetState, sea: WaveField) -> Contact:
+    """Every group's surface contact at ``state``: one surface query per wave filter.
+
+    Args:
+        system: the boats.
+        state: their state (positions, orientations, time).
+        sea: the wave field.
+
+    Returns:
+        The contact, for the forces and /diagnostics of this state.
+    """
+    rot, ref = reference_points(system, state)
+    queries = _world_points(system, rot, ref)
+    out = []
+    for (g, world), (surface, at_ref) in zip(queries, _sample(sea, state.t, queries, ref),
+                                             strict=True):
+        depths = surface.heights - world[:, 2]
+        wet = wet_owner = None
+        if g.mesh is not None:
+            wet = clip_hulls(g.faces, world, depths)
+            wet_owner = g.face_owner.take(wet.faces)
+        out.append(GroupContact(g, rot[g.index], world, depths, surface, at_ref, wet,
+                                wet_owner))
+    return Contact(state.position, state.orientation, state.t, sea, rot, tuple(out))
+
+
+def _world_points(system: System, rot: np.ndarray, ref: np.ndarray) -> list:
+    """(group, (E, 3) m world positions of its vertices / points) for every group."""
+    return [(g, ref[g.index][g.owner] + np.einsum("eij,ej->ei", rot[g.index][g.owner], g.body))
+            for g in system.groups]
+
+
+def _sample(sea: WaveField, t: float, queries: list, ref: np.ndarray) -> list:
+    """The surface at every query's points and at its boats' reference points.
+
+    Groups sharing a wave filter and precision share one sample_surface call (its fixed cost
+    is paid once).
+    """
+    by_filter: dict[tuple, list[int]] = {}
+    for k, (g, _) in enumerate(queries):
+        by_filter.setdefault((g.min_wavelength, g.wave_precision), []).append(k)
+    out: list = [None] * len(queries)
+    for (min_wavelength, precision), members in by_filter.items():
+        xy = np.concatenate([a for k in members
+                             for a in (queries[k][1][:, :2], ref[queries[k][0].index, :2])])
+        surface = sample_surface(sea, xy, t, min_wavelength=min_wavelength,
+                                 precision=precision)
+        start = 0
+        for k in members:
+            n, m = queries[k][1].shape[0], queries[k][0].index.shape[0]
+            out[k] = (surface.rows(start, start + n), surface.rows(start + n, start + n + m))
+            start += n + m
+    return out

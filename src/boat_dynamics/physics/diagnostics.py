@@ -1,0 +1,129 @@
+"""What /diagnostics reports about a boat: hydrostatics, mode, the remedies in force.
+
+Pure core: returns plain values; the node turns them into diagnostic_msgs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from boat_dynamics.physics.contact import Contact, contact
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, hydrostatics_of
+from boat_dynamics.physics.model import BoatParams, BoatState
+from boat_dynamics.physics.system import FleetState, System
+from ocean_sim.physics.waves import WaveField
+
+__all__ = ["BoatReport", "active_remedies", "boat_report", "fleet_reports"]
+
+
+@dataclass(frozen=True)
+class BoatReport:
+    """One boat's diagnostic summary.
+
+    Attributes:
+        level: 0 OK, 1 WARN (fully submerged or out of the water).
+        message: one line for humans.
+        values: (key, value) pairs, units in the keys.
+    """
+
+    level: int
+    message: str
+    values: tuple[tuple[str, str], ...]
+
+
+def active_remedies(params: BoatParams, substeps: int) -> list[str]:
+    """The shooting-out remedies (seed notes, section 4) this boat runs with."""
+    out = []
+    if isinstance(params.buoyancy, MeshBuoyancy):
+        out.append("exact hydrostatics (mesh: force bounded by rho g V)")
+    else:
+        out.append(f"depth clamp at {params.buoyancy.max_depth:g} m")
+    if params.damping_linear[2] > 0:
+        out.append("linear heave damping")
+    if params.damping_quadratic[2] > 0:
+        out.append("quadratic heave drag")
+    if np.any(params.damping_decay > 0):
+        out.append("velocity decay (seed notes)")
+    if np.any(params.added_mass > 0):
+        out.append("added mass")
+    if substeps > 1:
+        out.append(f"{substeps} substeps")
+    if params.control.mode == "constrained":
+        out.append("safety net (depth band, angular clamp, rescue)")
+    return out
+
+
+def boat_report(params: BoatParams, state: BoatState, sea: WaveField,
+                substeps: int = 1) -> BoatReport:
+    """Draft, submerged volume, waterplane area, GM, mode and remedies of a boat now."""
+    system, fleet_state = System.build([params]), FleetState.stack([state])
+    return fleet_reports(system, fleet_state, contact(system, fleet_state, sea), substeps)[0]
+
+
+def fleet_reports(system: System, state: FleetState, touching: Contact, substeps: int = 1,
+                  remedies: list[str] | None = None) -> list[BoatReport]:
+    """:func:`boat_report` of every boat of a system, from its surface contact at ``state``.
+
+    Args:
+        system: the boats.
+        state: their state.
+        touching: the surface contact at ``state`` (:func:`.contact.contact`), which the next
+            pipeline step from ``state`` can reuse.
+        substeps: physics substeps per step (a remedy).
+        remedies: each boat's remedies line ("; "-joined :func:`active_remedies`), if known
+            (they depend on the parameters only).
+
+    Raises:
+        ValueError: ``touching`` belongs to another state.
+    """
+    if not touching.belongs_to(system, state, touching.sea):
+        raise ValueError("touching: the contact of another system or state than the one "
+                         "reported")
+    volumes = np.zeros(system.count)
+    values: list[list] = [[] for _ in range(system.count)]
+    for c in touching.groups:
+        g, depths = c.group, c.depths
+        i = g.index
+        count = i.shape[0]
+        draft = np.full(count, -np.inf)
+        np.maximum.at(draft, g.owner, depths)
+        if g.mesh is not None:
+            reports = hydrostatics_of(c.wet, c.wet_owner, count, c.rotation, state.position[i],
+                                      draft)
+            for k, hs in zip(i, reports, strict=True):
+                volumes[k] = hs.submerged_volume
+                values[k] = [("buoyancy_model", "mesh"),
+                             ("draft_m", f"{hs.draft:.4f}"),
+                             ("submerged_volume_m3", f"{hs.submerged_volume:.4f}"),
+                             ("waterplane_area_m2", f"{hs.waterplane_area:.4f}"),
+                             ("metacentric_height_m", f"{hs.metacentric_height:.4f}")]
+            continue
+        model = g.points  # numeric fields stacked: (G,) per boat of the group
+        max_depth = model.max_depth[g.owner]
+        fraction = np.clip(depths, 0.0, max_depth) / max_depth
+        mean = (np.bincount(g.owner, weights=fraction, minlength=count)
+                / np.bincount(g.owner, minlength=count))
+        for j, k in enumerate(i):
+            volumes[k] = float(mean[j] * model.volume[j])
+            values[k] = [("buoyancy_model", "sample_points"),
+                         ("draft_m", f"{max(float(draft[j]), 0.0):.4f}"),
+                         ("submerged_volume_m3", f"{volumes[k]:.4f}")]
+    out = []
+    for k, params in enumerate(system.params):
+        model = params.buoyancy
+        hull_volume = model.mesh.volume if isinstance(model, MeshBuoyancy) else model.volume
+        line = (remedies[k] if remedies is not None
+                else "; ".join(active_remedies(params, substeps)))
+        entries = [values[k][0], ("control_mode", params.control.mode), *values[k][1:],
+                   ("remedies", line)]
+        ratio = volumes[k] / hull_volume
+        if ratio >= 0.999:
+            out.append(BoatReport(1, "fully submerged", tuple(entries)))
+        elif ratio <= 0.0:
+            out.append(BoatReport(1, "out of the water", tuple(entries)))
+        else:
+            out.append(BoatReport(0, f"floating, {100 * ratio:.0f} % submerged",
+                                  tuple(entries)))
+    return out

@@ -1,0 +1,347 @@
+"""Mesh buoyancy, the surfacic method: hydrostatic pressure on the submerged hull triangles.
+
+Each hull triangle is clipped against the water surface sampled at its vertices (the depth
+d = surface height - z is taken linear along each edge, so the waterline cuts an edge where
+d = 0). On each submerged triangle the pressure p = rho g d acts along the inward normal::
+
+    F_i = -rho g (integral of d dA) n_i = -rho g A_i (d_1 + d_2 + d_3) / 3 n_i
+
+applied at its true centre of pressure (not the centroid: deeper points push harder),
+integral(r d dA) / integral(d dA), with, for d linear on a triangle,
+integral(r d dA) = A / 12 [ (sum r_j)(sum d_j) + sum r_j d_j ]. On a closed hull in flat water
+the forces sum to rho g V_submerged straight up (Archimedes, by the divergence theorem) and the
+torques to the exact righting moment, for any shape and heel.
+
+Sources: Kerner, "Water interaction model for boats in video games" (Game Developer, 2015),
+parts 1-2; the seed notes ("Volume Displacement (Mesh-Based Archimedes)", "surfacic"
+variant, "true center of pressure").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from boat_dynamics.physics.hull import HullMesh
+from boat_dynamics.physics.hull_drag import HullDrag
+from boat_dynamics.physics.wrench import Wrench, cross, sum_by_owner
+
+__all__ = [
+    "Hydrostatics",
+    "MeshBuoyancy",
+    "SubmergedTriangles",
+    "clip_hulls",
+    "clip_parts",
+    "clip_submerged",
+    "hydrostatics",
+    "hydrostatics_of",
+    "mesh_buoyancy",
+    "pressure_wrenches",
+    "submerged_triangles",
+]
+
+
+@dataclass(frozen=True)
+class MeshBuoyancy:
+    """Parameters of the mesh model.
+
+    Attributes:
+        mesh: the closed hull mesh (body frame, origin at the hull reference point).
+        drag: friction and pressure drag options on the wetted triangles.
+    """
+
+    mesh: HullMesh
+    drag: HullDrag = field(default_factory=HullDrag)
+
+
+#: The submerged parts of a triangle by its wet corners, coded w0 + 2 w1 + 4 w2: up to two
+#: triangles, as indices into (V0, V1, V2, E01, E12, E20), its corners then the waterline
+#: points on its edges 0-1, 1-2 and 2-0, each part wound as the triangle (so with its normal);
+#: -1: no part. One wet corner keeps its corner triangle, two a quadrilateral split in two.
+_PARTS_BY_CODE = np.array([
+    [-1, -1, -1, -1, -1, -1],  # 0: dry
+    [0, 3, 5, -1, -1, -1],  # 1: V0 wet
+    [1, 4, 3, -1, -1, -1],  # 2: V1 wet
+    [0, 1, 4, 0, 4, 5],  # 3: V2 dry: V0 V1 E12 E20
+    [2, 5, 4, -1, -1, -1],  # 4: V2 wet
+    [2, 0, 3, 2, 3, 4],  # 5: V1 dry: V2 V0 E01 E12
+    [1, 2, 5, 1, 5, 3],  # 6: V0 dry: V1 V2 E20 E01
+    [0, 1, 2, -1, -1, -1],  # 7: all wet
+])
+_CODE = np.array([1, 2, 4], dtype=np.int8)
+_NEXT = np.array([1, 2, 0])
+
+
+def clip_parts(xyz: np.ndarray, depths: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The submerged parts of triangles, as triangles, without a branch per case.
+
+    Each triangle's wet corners make a code (0-7) that looks up its parts in a table; the
+    waterline points of all three edges are computed for every triangle. The cost is a fixed
+    twenty numpy calls whatever the waterline does (a branch per case took 2.4x the
+    instructions for 10 box hulls, callgrind). Arrays are coordinate-major, triangles last, so
+    that every element-wise operation runs over long contiguous rows (with (F, 3, 3) arrays
+    numpy loops over a length-3 axis innermost: the edge points of 9,720 triangles took
+    0.9 ms, 0.13 ms in this layout).
+
+    Args:
+        xyz: (3, 3, F) m, coordinate k of corner j of triangle f at [k, j, f], world frame.
+        depths: (3, F) m, depth below the surface at each corner (> 0 = submerged).
+
+    Returns:
+        (3, 3, T) corners and (3, T) depths (0 on the waterline) of the parts, same layout,
+        and (T,) int the triangle each comes from; winding is preserved.
+    """
+    f = depths.shape[1]
+    wet = (depths > 0.0).view(np.int8)
+    table = _PARTS_BY_CODE.take(_CODE @ wet, axis=0).reshape(2 * f, 3)
+    kept = np.flatnonzero(table[:, 0] >= 0)
+    source = kept >> 1
+    pick = (table.take(kept, axis=0) * f + source[:, None]).T  # (3, T) into (6, F) slots
+    # waterline points on the edges (j, j+1); t is only used where the edge is crossed
+    drop = depths - depths.take(_NEXT, axis=0)
+    t = depths / np.where(drop != 0.0, drop, 1.0)
+    points = np.empty((3, 6, f))
+    points[:, :3] = xyz
+    points[:, 3:] = xyz + t * (xyz.take(_NEXT, axis=1) - xyz)
+    point_depths = np.zeros((6, f))
+    point_depths[:3] = depths
+    return (points.reshape(3, 6 * f).take(pick, axis=1), point_depths.reshape(6 * f).take(pick),
+            source)
+
+
+def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The submerged parts of triangles, as triangles (see :func:`clip_parts`).
+
+    Args:
+        corners: (F, 3, 3) m, triangle vertices, world frame.
+        depths: (F, 3) m, depth below the surface at each vertex (> 0 = submerged).
+        normals: (F, 3) unit outward normals.
+
+    Returns:
+        (T, 3, 3) corners, (T, 3) depths (0 on the waterline), (T, 3) normals of the submerged
+        triangles; winding is preserved.
+    """
+    xyz, d, source = clip_parts(np.ascontiguousarray(corners.transpose(2, 1, 0)),
+                                np.ascontiguousarray(depths.T))
+    return xyz.transpose(2, 1, 0), d.T, normals[source]
+
+
+@dataclass(frozen=True)
+class SubmergedTriangles:
+    """The wetted part of one or several hulls, world frame, coordinate-major.
+
+    The layout of :func:`clip_parts`: every element-wise operation runs over parts.
+
+    Attributes:
+        xyz: (3, 3, T) m, coordinate k of corner j of part t at [k, j, t].
+        depths: (3, T) m below the surface at each corner.
+        vector_areas: (3, T) m^2, area times outward unit normal: all that pressure
+            integrals need.
+        faces: (T,) int, the hull face each part comes from.
+    """
+
+    xyz: np.ndarray
+    depths: np.ndarray
+    vector_areas: np.ndarray
+    faces: np.ndarray
+
+    @classmethod
+    def of(cls, xyz: np.ndarray, depths: np.ndarray, faces: np.ndarray) -> SubmergedTriangles:
+        """The parts with their vector areas (e1 x e2) / 2."""
+        return cls(xyz, depths, 0.5 * cross(xyz[:, 1] - xyz[:, 0], xyz[:, 2] - xyz[:, 0], axis=0),
+                   faces)
+
+    @property
+    def corners(self) -> np.ndarray:
+        """(T, 3, 3) m, the parts' corners (a view)."""
+        return self.xyz.transpose(2, 1, 0)
+
+    @cached_property
+    def areas(self) -> np.ndarray:
+        """(T,) m^2."""
+        va = self.vector_areas
+        return np.sqrt(va[0] * va[0] + va[1] * va[1] + va[2] * va[2])
+
+    @cached_property
+    def normals(self) -> np.ndarray:
+        """(T, 3) outward unit normals (0 for a zero-area part)."""
+        area = self.areas
+        return (self.vector_areas / np.where(area > 0.0, area, 1.0)).T
+
+    @cached_property
+    def centroids(self) -> np.ndarray:
+        """(T, 3) m."""
+        return ((self.xyz[:, 0] + self.xyz[:, 1] + self.xyz[:, 2]) / 3.0).T
+
+
+def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.ndarray
+               ) -> SubmergedTriangles:
+    """Clip hulls at the surface sampled at their vertices (see :func:`clip_parts`).
+
+    Args:
+        faces: (F, 3) int, vertex indices of each triangle (several hulls may be concatenated),
+            wound counter-clockwise seen from outside.
+        vertices_world: (V, 3) m.
+        vertex_depths: (V,) m, surface height minus vertex height.
+    """
+    corners = faces.T
+    xyz, d, source = clip_parts(vertices_world.T.take(corners, axis=1),
+                                vertex_depths.take(corners))
+    return SubmergedTriangles.of(xyz, d, source)
+
+
+def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
+                        vertex_depths: np.ndarray) -> SubmergedTriangles:
+    """Clip one hull at the surface sampled at its vertices (see :func:`clip_parts`)."""
+    return clip_hulls(model.mesh.faces, vertices_world, vertex_depths)
+
+
+def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
+                      center_of_mass_world: np.ndarray, rho_g: np.ndarray
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """Hydrostatic pressure force and torque on each hull, world frame.
+
+    Args:
+        wet: the submerged triangles of ``count`` hulls.
+        owner: (T,) int, the hull of each triangle.
+        count: number of hulls, B.
+        center_of_mass_world: (B, 3) m, the torque reference of each hull.
+        rho_g: (B,) N/m^3, water density times gravity for each hull.
+
+    Returns:
+        (B, 3) N forces and (B, 3) N m torques about the centres of mass, world frame.
+    """
+    p, d, vector_area = wet.xyz, wet.depths, wet.vector_areas
+    dsum = d[0] + d[1] + d[2]
+    com = center_of_mass_world.T.take(owner, axis=1)  # (3, T)
+    # integral(r d dA) = A / 12 sum_j r_j (sum_k d_k + d_j), r about the centre of mass
+    moment = ((p[:, 0] - com) * (dsum + d[0]) + (p[:, 1] - com) * (dsum + d[1])
+              + (p[:, 2] - com) * (dsum + d[2]))
+    rho_g_t = rho_g.take(owner)
+    per_triangle = np.empty((6, d.shape[1]))
+    # force -rho g integral(d dA) n = -rho g (sum d / 3) A n, at the centre of pressure
+    per_triangle[:3] = (rho_g_t * dsum * (-1.0 / 3.0)) * vector_area
+    per_triangle[3:] = (rho_g_t * (-1.0 / 12.0)) * cross(moment, vector_area, axis=0)
+    sums = sum_by_owner(per_triangle.T, owner, count)
+    return sums[:, :3], sums[:, 3:]
+
+
+def mesh_buoyancy(
+    model: MeshBuoyancy,
+    vertices_world: np.ndarray,
+    vertex_depths: np.ndarray,
+    rotation: np.ndarray,
+    center_of_mass_world: np.ndarray,
+    water_density: float,
+    gravity: float,
+    wet: SubmergedTriangles | None = None,
+) -> Wrench:
+    """Hydrostatic pressure wrench on one submerged hull (see :func:`pressure_wrenches`).
+
+    Args:
+        model: the mesh model.
+        vertices_world: (V, 3) m, hull vertices in the world frame.
+        vertex_depths: (V,) m, surface height minus vertex height.
+        rotation: (3, 3) body-to-world rotation.
+        center_of_mass_world: (3,) m.
+        water_density: rho, kg/m^3.
+        gravity: g, m/s^2.
+        wet: the submerged triangles, if already clipped.
+
+    Returns:
+        The wrench about the centre of mass, body frame.
+    """
+    if wet is None:
+        wet = submerged_triangles(model, vertices_world, vertex_depths)
+    force, torque = pressure_wrenches(wet, np.zeros(wet.faces.shape[0], dtype=np.intp), 1,
+                                      np.asarray(center_of_mass_world)[None, :],
+                                      np.array([water_density * gravity]))
+    return Wrench(rotation.T @ force[0], rotation.T @ torque[0])
+
+
+@dataclass(frozen=True)
+class Hydrostatics:
+    """Hydrostatic properties of the floating hull, world frame (exact in flat water).
+
+    Attributes:
+        submerged_volume: m^3.
+        center_of_buoyancy: (3,) m, centroid of the submerged volume.
+        waterplane_area: m^2, area of the hull's section by the surface.
+        metacentric_height: GM_T = KB + BM - KG, m (transverse, about the body x axis).
+        draft: m, depth of the lowest submerged vertex below its surface.
+    """
+
+    submerged_volume: float
+    center_of_buoyancy: np.ndarray
+    waterplane_area: float
+    metacentric_height: float
+    draft: float
+
+
+def hydrostatics(model: MeshBuoyancy, vertices_world: np.ndarray, vertex_depths: np.ndarray,
+                 rotation: np.ndarray, center_of_mass_world: np.ndarray) -> Hydrostatics:
+    """Submerged volume, centre of buoyancy, waterplane area and GM of one hull.
+
+    See :func:`hydrostatics_of` for the method.
+    """
+    wet = submerged_triangles(model, vertices_world, vertex_depths)
+    return hydrostatics_of(wet, np.zeros(wet.faces.shape[0], dtype=np.intp), 1,
+                           rotation[None], np.asarray(center_of_mass_world)[None],
+                           np.array([vertex_depths.max()]))[0]
+
+
+def hydrostatics_of(wet: SubmergedTriangles, owner: np.ndarray, count: int,
+                    rotation: np.ndarray, center_of_mass_world: np.ndarray,
+                    draft: np.ndarray) -> list[Hydrostatics]:
+    """Submerged volume, centre of buoyancy, waterplane area and GM of ``count`` hulls.
+
+    Volume integrals become integrals over the submerged surface by the divergence theorem
+    with fields that vanish on the waterplane (d = 0 there): V = -integral(d n_z dA),
+    integral(x dV) = -integral(x d n_z dA), integral(z dV) = -integral((z d + d^2/2) n_z dA);
+    waterplane moments are integral(f dA_wp) = -integral(f n_z dA) over the submerged surface.
+    BM = I_wp / V with I_wp the waterplane's second moment about its centroid line along the
+    body x axis. Source: Biran & Lopez-Pulido, "Ship Hydrostatics and Stability" (2014),
+    ch. 2-3.
+
+    Args:
+        wet: the submerged triangles of the hulls.
+        owner: (T,) int, the hull of each triangle.
+        count: number of hulls, B.
+        rotation: (B, 3, 3) body-to-world rotations.
+        center_of_mass_world: (B, 3) m.
+        draft: (B,) m, depth of each hull's lowest vertex below its surface.
+    """
+    p, d = wet.xyz, wet.depths  # (3, 3, T), (3, T): corners along the first or second axis
+    nz_area = wet.vector_areas[2]  # n_z dA
+
+    def integral(f, g=None):
+        """Integral over each triangle of f (linear) or f*g (both linear), per unit area."""
+        if g is None:
+            return f.sum(axis=0) / 3.0
+        return (f.sum(axis=0) * g.sum(axis=0) + (f * g).sum(axis=0)) / 12.0
+
+    # waterplane moments, in coordinates across each body x axis (transverse)
+    axis = rotation[:, :, 0].copy()
+    axis[:, 2] = 0.0
+    axis /= np.maximum(np.linalg.norm(axis, axis=1), 1e-12)[:, None]
+    across = np.stack([-axis[:, 1], axis[:, 0], np.zeros(count)], axis=1).T.take(owner, axis=1)
+    s = p[0] * across[0] + p[1] * across[1]  # (3, T) transverse coordinate of each corner
+    x, y, z = p[0], p[1], p[2]
+    columns = np.stack([integral(d), integral(x, d), integral(y, d),
+                        integral(z, d) + 0.5 * integral(d, d), np.ones_like(nz_area),
+                        integral(s), integral(s, s)], axis=1)
+    sums = sum_by_owner(-columns * nz_area[:, None], owner, count)
+    volume, a_wp, s_first, s_second = sums[:, 0], sums[:, 4], sums[:, 5], sums[:, 6]
+    floating = volume > 0.0
+    cb = np.where(floating[:, None], sums[:, 1:4] / np.where(floating, volume, 1.0)[:, None],
+                  center_of_mass_world)
+    s_mean = s_first / np.where(a_wp > 0.0, a_wp, np.inf)
+    i_wp = s_second - a_wp * s_mean**2
+    gm = cb[:, 2] + i_wp / np.where(floating, volume, np.inf) - center_of_mass_world[:, 2]
+    rows = zip(floating.tolist(), volume.tolist(), cb, a_wp.tolist(), gm.tolist(),
+               np.asarray(draft, dtype=float).tolist(), strict=True)
+    return [Hydrostatics(v, c, a, m, d) if f else Hydrostatics(0.0, c, 0.0, 0.0, 0.0)
+            for f, v, c, a, m, d in rows]

@@ -1,0 +1,165 @@
+"""A boat's parameters, state, inputs and forces: the frozen dataclasses of the core.
+
+SI units, body frame FLU, world frame ENU (REP-103). :mod:`boat_dynamics.physics.boat` steps them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
+from boat_dynamics.physics.control import ControlSettings
+from boat_dynamics.physics.hull import BoxHull
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.propulsion import Propulsion
+from boat_dynamics.physics.rigid_body import quat_from_euler, rotation_matrix
+from boat_dynamics.physics.rudder import Rudder
+from boat_dynamics.physics.wrench import Wrench
+from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.physics.waves import Precision
+
+__all__ = [
+    "BoatInputs",
+    "BoatParams",
+    "BoatState",
+    "Forces",
+    "initial_state",
+    "reference_pose",
+]
+
+
+@dataclass(frozen=True)
+class BoatParams:
+    """Everything constant about one boat.
+
+    Attributes:
+        hull: the hull's bounding box (the hull itself for a box hull).
+        mass: kg, > 0.
+        center_of_mass: (3,) m, body frame, relative to the hull reference point.
+        inertia: (3,) kg m^2, principal moments about the centre of mass (body axes).
+        buoyancy: the buoyancy model: mesh (pressure on hull triangles) or sample points.
+        damping_linear: (6,) N/(m/s) and N m/(rad/s), per body DOF.
+        damping_quadratic: (6,) N/(m/s)^2 and N m/(rad/s)^2, per body DOF.
+        added_mass: (6,) kg and kg m^2, per body DOF (diagonal).
+        propulsion: the thruster.
+        rudder: the rudder.
+        water_density: rho, kg/m^3.
+        gravity: g, m/s^2.
+        min_wavelength: m, wave components shorter than this do not act on the boat.
+        wave_precision: ``float64`` or ``float32``, precision of the boat's surface queries
+            (:func:`ocean_sim.physics.waves.sample_surface`).
+        keel_rate: 1/s, the keel's velocity reflection (0 = off).
+        stokes_drift: add the sea's Stokes drift to the water velocity.
+        control: the control mode and its settings.
+        damping_decay: (6,) 1/s, the seed notes' (Unity's) per-step velocity decay per body
+            DOF, v <- v / (1 + dt c), applied after each integration step (arcade; not a
+            force, so not in wrench/damping); zeros = off.
+        inertia_products: (3,) kg m^2, products of inertia [Ixy, Ixz, Iyz] = integral(x y dm),
+            ... about the centre of mass (body axes); the tensor holds them negated.
+    """
+
+    hull: BoxHull
+    mass: float
+    center_of_mass: np.ndarray
+    inertia: np.ndarray
+    buoyancy: MeshBuoyancy | SamplePointBuoyancy
+    damping_linear: np.ndarray
+    damping_quadratic: np.ndarray
+    added_mass: np.ndarray
+    propulsion: Propulsion
+    rudder: Rudder
+    water_density: float = WATER_DENSITY
+    gravity: float = GRAVITY
+    min_wavelength: float = 0.0
+    wave_precision: Precision = "float64"
+    keel_rate: float = 0.0
+    stokes_drift: bool = False
+    control: ControlSettings = field(default_factory=ControlSettings)
+    inertia_products: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    damping_decay: np.ndarray = field(default_factory=lambda: np.zeros(6))
+
+
+@dataclass(frozen=True)
+class BoatState:
+    """The state of one boat at time ``t``.
+
+    Attributes:
+        t: s, simulation time.
+        position: (3,) m, centre of mass, world frame (ENU).
+        orientation: (4,) unit quaternion (x, y, z, w), body (FLU) to world.
+        velocity: (3,) m/s, velocity of the centre of mass, body frame.
+        angular_velocity: (3,) rad/s, body frame.
+        throttle: -1..1, the actual thrust fraction (lags the command with a time constant).
+        control_weight: 0..1, how far the control mode has taken over since it was selected.
+    """
+
+    t: float
+    position: np.ndarray
+    orientation: np.ndarray
+    velocity: np.ndarray
+    angular_velocity: np.ndarray
+    throttle: float = 0.0
+    control_weight: float = 1.0
+
+
+@dataclass(frozen=True)
+class BoatInputs:
+    """Actuator commands, already validated and within range.
+
+    Attributes:
+        throttle: -1..1, commanded fraction of max thrust (negative = reverse).
+        rudder: rad, + turns the bow to port (rudder and/or steerable nozzle).
+    """
+
+    throttle: float = 0.0
+    rudder: float = 0.0
+
+
+@dataclass(frozen=True)
+class Forces:
+    """Every wrench acting on the boat, body frame, about the centre of mass.
+
+    ``total`` is the net wrench (the sources plus gravity) that the integrator uses.
+    """
+
+    buoyancy: Wrench
+    damping: Wrench
+    drag: Wrench
+    thrust: Wrench
+    rudder: Wrench
+    gravity: Wrench
+    total: Wrench
+
+
+def initial_state(
+    params: BoatParams,
+    position: np.ndarray,
+    roll: float = 0.0,
+    pitch: float = 0.0,
+    yaw: float = 0.0,
+    t: float = 0.0,
+) -> BoatState:
+    """State at rest with the hull reference point at ``position`` (m, world) and given attitude.
+
+    Args:
+        params: the boat.
+        position: (3,) m, world position of the hull reference point.
+        roll: rad.
+        pitch: rad.
+        yaw: rad.
+        t: s.
+
+    Returns:
+        The state (centre of mass placed from the reference point and attitude).
+    """
+    q = quat_from_euler(roll, pitch, yaw)
+    com = np.asarray(position, dtype=float) + rotation_matrix(q) @ params.center_of_mass
+    return BoatState(t, com, q, np.zeros(3), np.zeros(3))
+
+
+def reference_pose(params: BoatParams, state: BoatState) -> tuple[np.ndarray, np.ndarray]:
+    """World position (3,) m of the hull reference point, and the orientation (4,)."""
+    r = rotation_matrix(state.orientation)
+    return state.position - r @ params.center_of_mass, state.orientation

@@ -1,0 +1,275 @@
+"""The batched core's data: a frozen :class:`System` of B boats and their state, inputs, forces.
+
+A boat step costs a few hundred numpy calls whatever the boat; called per boat, their fixed
+cost (about 1-3 us each) dominates. So the pipeline (:mod:`boat_dynamics.physics.pipeline`)
+steps every boat at once: boats that take the same code path (same buoyancy model and options,
+thruster and rudder kinds, ...) form a :class:`Group` whose parameters are stacked ((G,) and
+(G, 3) arrays) and whose hull triangles or sample points are concatenated, each element tagged
+with its boat (``owner``); per-boat sums come from
+:func:`boat_dynamics.physics.wrench.sum_by_owner`.
+
+Parameters (:class:`System`) are kept apart from the state (:class:`FleetState`), as in brax's
+``System`` and ``State``. Everything here is frozen and holds no cache.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces
+from boat_dynamics.physics.propulsion import Propulsion
+from boat_dynamics.physics.rudder import Rudder
+from boat_dynamics.physics.wrench import Wrench
+from ocean_sim.physics.waves import Precision
+
+__all__ = ["FleetForces", "FleetInputs", "FleetState", "Group", "System"]
+
+
+@dataclass(frozen=True)
+class FleetState:
+    """The states of B boats at one time ``t``.
+
+    Attributes:
+        t: s, simulation time (shared).
+        position: (B, 3) m, centres of mass, world frame (ENU).
+        orientation: (B, 4) unit quaternions (x, y, z, w), body (FLU) to world.
+        velocity: (B, 3) m/s, body frame.
+        angular_velocity: (B, 3) rad/s, body frame.
+        throttle: (B,) actual thrust fractions.
+        control_weight: (B,) 0..1, how far each control mode has taken over.
+    """
+
+    t: float
+    position: np.ndarray
+    orientation: np.ndarray
+    velocity: np.ndarray
+    angular_velocity: np.ndarray
+    throttle: np.ndarray
+    control_weight: np.ndarray
+
+    @classmethod
+    def stack(cls, states: Sequence[BoatState]) -> FleetState:
+        """The fleet state of boats that share a time (raises ValueError otherwise)."""
+        times = {s.t for s in states}
+        if len(times) != 1:
+            raise ValueError(f"a fleet steps boats at one time; got times {sorted(times)}")
+        return cls(states[0].t, np.array([s.position for s in states], dtype=float),
+                   np.array([s.orientation for s in states], dtype=float),
+                   np.array([s.velocity for s in states], dtype=float),
+                   np.array([s.angular_velocity for s in states], dtype=float),
+                   np.array([s.throttle for s in states], dtype=float),
+                   np.array([s.control_weight for s in states], dtype=float))
+
+    def boat(self, i: int) -> BoatState:
+        """Boat ``i``'s state (arrays are copies: the fleet state stays frozen)."""
+        return BoatState(self.t, self.position[i].copy(), self.orientation[i].copy(),
+                         self.velocity[i].copy(), self.angular_velocity[i].copy(),
+                         float(self.throttle[i]), float(self.control_weight[i]))
+
+
+@dataclass(frozen=True)
+class FleetInputs:
+    """Validated commands of B boats: (B,) throttle fractions and (B,) rudder angles, rad."""
+
+    throttle: np.ndarray
+    rudder: np.ndarray
+
+    @classmethod
+    def stack(cls, inputs: Sequence[BoatInputs]) -> FleetInputs:
+        """From one BoatInputs per boat."""
+        return cls(np.array([u.throttle for u in inputs], dtype=float),
+                   np.array([u.rudder for u in inputs], dtype=float))
+
+
+@dataclass(frozen=True)
+class FleetForces(Forces):
+    """:class:`~boat_dynamics.physics.model.Forces` of B boats: each wrench holds (B, 3) arrays."""
+
+    def boat(self, i: int) -> Forces:
+        """Boat ``i``'s forces."""
+        return Forces(*(Wrench(w.force[i].copy(), w.torque[i].copy())
+                        for w in (getattr(self, f.name) for f in dataclasses.fields(self))))
+
+
+def _structure(obj) -> tuple:
+    """The non-numeric fields of a parameter dataclass: what decides its code path."""
+    out = []
+    for f in dataclasses.fields(obj):
+        value = getattr(obj, f.name)
+        if value is None or isinstance(value, bool | str):
+            out.append((f.name, value))
+        elif dataclasses.is_dataclass(value):
+            out.append((f.name, _structure(value)))
+    return tuple(out)
+
+
+def _stack(items: Sequence, skip: tuple[str, ...] = ()):
+    """One dataclass whose numeric fields are the items' values stacked along a first axis.
+
+    Non-numeric fields (equal across the items: they are part of the group key) are kept.
+    The numeric fields of the parameter dataclasses are typed ``Real`` (a float for one boat,
+    a (G,) array for a group; :data:`boat_dynamics.physics.wrench.Real`), so the stacked
+    object is of its declared type.
+    """
+    first = items[0]
+    changes = {}
+    for f in dataclasses.fields(first):
+        value = getattr(first, f.name)
+        if f.name in skip or value is None or isinstance(value, bool | str):
+            continue
+        if dataclasses.is_dataclass(value):
+            changes[f.name] = _stack([getattr(i, f.name) for i in items])
+        else:
+            changes[f.name] = np.array([getattr(i, f.name) for i in items], dtype=float)
+    return replace(first, **changes)
+
+
+def _group_key(p: BoatParams) -> tuple:
+    b = p.buoyancy
+    kind = "mesh" if isinstance(b, MeshBuoyancy) else "points"
+    return (kind, _structure(b), _structure(p.propulsion), _structure(p.rudder),
+            p.stokes_drift, p.min_wavelength, p.wave_precision)
+
+
+@dataclass(frozen=True)
+class Group:
+    """Boats that take the same code path, their parameters stacked.
+
+    Attributes:
+        index: (G,) int, the boats' places in the fleet.
+        mesh: the buoyancy parameters (first boat's; ``drag`` stacked) for a mesh group.
+        points: the sample-point parameters, numeric fields stacked and ``points``
+            concatenated, for a sample-point group.
+        body: (E, 3) m, hull vertices or sample points of every boat, body frames.
+        owner: (E,) int, the boat (0..G-1) of each vertex / point.
+        faces: (F, 3) int, mesh triangles indexing ``body`` (mesh group).
+        face_owner: (F,) int, the boat of each triangle (mesh group).
+        propulsion: stacked thruster parameters.
+        rudder: stacked rudder parameters.
+        length: (G,) m, hull lengths.
+        stokes_drift: add the Stokes drift of the (filtered) sea to the water velocity.
+        min_wavelength: m, the group's wave filter.
+        wave_precision: the precision of the group's surface queries.
+    """
+
+    index: np.ndarray
+    mesh: MeshBuoyancy | None
+    points: SamplePointBuoyancy | None
+    body: np.ndarray
+    owner: np.ndarray
+    faces: np.ndarray | None
+    face_owner: np.ndarray | None
+    propulsion: Propulsion
+    rudder: Rudder
+    length: np.ndarray
+    stokes_drift: bool
+    min_wavelength: float
+    wave_precision: Precision
+
+    @classmethod
+    def build(cls, params: Sequence[BoatParams], index: np.ndarray) -> Group:
+        """The group of boats ``params`` (same :func:`_group_key`) at fleet places ``index``."""
+        first = params[0]
+        if isinstance(first.buoyancy, MeshBuoyancy):
+            meshes = [p.buoyancy.mesh for p in params]
+            counts = [m.vertices.shape[0] for m in meshes]
+            offsets = np.cumsum([0, *counts[:-1]])
+            faces = np.concatenate([m.faces + o for m, o in zip(meshes, offsets, strict=True)])
+            face_owner = np.concatenate([np.full(m.faces.shape[0], i, dtype=np.intp)
+                                         for i, m in enumerate(meshes)])
+            mesh = replace(first.buoyancy, drag=_stack([p.buoyancy.drag for p in params]))
+            body = np.concatenate([m.vertices for m in meshes])
+            points = None
+        else:
+            models = [p.buoyancy for p in params]
+            counts = [m.points.shape[0] for m in models]
+            body = np.concatenate([m.points for m in models])
+            points = replace(_stack(models, skip=("points",)), points=body)
+            mesh = faces = face_owner = None
+        owner = np.concatenate([np.full(n, i, dtype=np.intp) for i, n in enumerate(counts)])
+        return cls(index, mesh, points, body, owner, faces, face_owner,
+                   _stack([p.propulsion for p in params]), _stack([p.rudder for p in params]),
+                   np.array([p.hull.length for p in params]), first.stokes_drift,
+                   first.min_wavelength, first.wave_precision)
+
+
+@dataclass(frozen=True)
+class System:
+    """B boats prepared for stepping together: parameters stacked once, per group and fleet-wide.
+
+    Build with :meth:`build`; a boat whose parameters change (its control mode, say) needs a
+    new System. Per-boat arrays are (B,) or (B, 3), in the order of ``params``.
+
+    Attributes:
+        params: the boats' parameters.
+        groups: the boats grouped by code path.
+        mass: (B,) kg.
+        center_of_mass: (B, 3) m, body frame, from the hull reference point.
+        inertia: (B, 3) kg m^2, principal moments.
+        effective_mass: (B, 3) kg, mass plus surge/sway/heave added mass.
+        effective_inertia: (B, 3) kg m^2, moments plus roll/pitch/yaw added inertia.
+        inertia_products: (B, 3) kg m^2, or None when every boat's are zero.
+        decay: (B, 6) 1/s, the notes' velocity decay, or None when off for every boat.
+        damping_linear: (B, 6) N/(m/s), N m/(rad/s).
+        damping_quadratic: (B, 6) N/(m/s)^2, N m/(rad/s)^2.
+        water_density: (B,) kg/m^3.
+        gravity: (B,) m/s^2.
+        keel_rate: (B,) 1/s.
+        special: the boats not in ``dynamic`` control mode.
+    """
+
+    params: tuple[BoatParams, ...]
+    groups: tuple[Group, ...]
+    mass: np.ndarray
+    center_of_mass: np.ndarray
+    inertia: np.ndarray
+    effective_mass: np.ndarray
+    effective_inertia: np.ndarray
+    inertia_products: np.ndarray | None
+    decay: np.ndarray | None
+    damping_linear: np.ndarray
+    damping_quadratic: np.ndarray
+    water_density: np.ndarray
+    gravity: np.ndarray
+    keel_rate: np.ndarray
+    special: tuple[int, ...]
+
+    @property
+    def count(self) -> int:
+        """B, the number of boats."""
+        return len(self.params)
+
+    @classmethod
+    def build(cls, params: Sequence[BoatParams]) -> System:
+        """The system of boats ``params`` (at least one)."""
+        ps = tuple(params)
+        keys: dict[tuple, list[int]] = {}
+        for i, p in enumerate(ps):
+            keys.setdefault(_group_key(p), []).append(i)
+        groups = tuple(Group.build([ps[i] for i in members], np.array(members, dtype=np.intp))
+                       for members in keys.values())
+        mass = np.array([p.mass for p in ps])
+        inertia = np.array([p.inertia for p in ps], dtype=float)
+        added = np.array([p.added_mass for p in ps], dtype=float)
+        products = np.array([p.inertia_products for p in ps], dtype=float)
+        decay = np.array([p.damping_decay for p in ps], dtype=float)
+        return cls(
+            params=ps, groups=groups, mass=mass,
+            center_of_mass=np.array([p.center_of_mass for p in ps], dtype=float),
+            inertia=inertia, effective_mass=mass[:, None] + added[:, :3],
+            effective_inertia=inertia + added[:, 3:],
+            inertia_products=products if np.any(products != 0.0) else None,
+            decay=decay if np.any(decay > 0.0) else None,
+            damping_linear=np.array([p.damping_linear for p in ps], dtype=float),
+            damping_quadratic=np.array([p.damping_quadratic for p in ps], dtype=float),
+            water_density=np.array([p.water_density for p in ps]),
+            gravity=np.array([p.gravity for p in ps]),
+            keel_rate=np.array([p.keel_rate for p in ps]),
+            special=tuple(i for i, p in enumerate(ps) if p.control.mode != "dynamic"),
+        )

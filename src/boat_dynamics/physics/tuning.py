@@ -1,0 +1,115 @@
+"""Hydrostatic equilibrium, stiffness and the critical-damping helper.
+
+Stiffnesses are measured from the boat's own buoyancy model in flat water (central differences
+about the equilibrium), so they hold for any hull and either buoyancy model: for a box they
+are rho g A_wp in heave and m g GM in roll and pitch. The critical damping of a DOF is
+b_c = 2 sqrt(k m) (Source: the seed notes, "Damping"; Fossen (2011), sec. 4.3), with the mass
+or moment of inertia of that DOF (rigid body plus added mass).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from boat_dynamics.physics import pipeline
+from boat_dynamics.physics.contact import contact
+from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
+from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.system import FleetInputs, FleetState, System
+from ocean_sim.physics.waves import WaveField
+
+__all__ = ["critical_damping", "equilibrium_height", "hydrostatic_stiffness"]
+
+_FLAT = WaveField()
+
+
+_AT_REST = FleetInputs.stack([BoatInputs()])
+
+
+def _vertical_buoyancy(system: System, z: float, roll: float = 0.0,
+                       pitch: float = 0.0) -> tuple[float, np.ndarray]:
+    """World-vertical buoyancy force (N) and body torque (N m) in flat water.
+
+    Of the one boat of ``system``, its hull reference point at height z (m).
+    """
+    state = FleetState.stack([initial_state(system.params[0], [0.0, 0.0, z], roll=roll,
+                                            pitch=pitch)])
+    forces, _ = pipeline.forces(system, state, _AT_REST, contact(system, state, _FLAT))
+    f = forces.boat(0).buoyancy
+    return float((rotation_matrix(state.orientation[0]) @ f.force)[2]), f.torque
+
+
+def equilibrium_height(params: BoatParams) -> float:
+    """Height z (m) of the hull reference point where buoyancy carries the weight, upright.
+
+    Regula falsi (Illinois variant) over the hull's height in flat water, to 1e-10 of the
+    weight: buoyancy is piecewise linear in z for wall-sided hulls, so a few evaluations
+    suffice. Raises ValueError for a hull that sinks.
+    """
+    weight = params.mass * params.gravity
+    half = params.hull.height / 2
+    system = System.build([params])
+
+    def excess(z: float) -> float:
+        return _vertical_buoyancy(system, z)[0] - weight
+
+    low, high = -half, half  # fully submerged (excess > 0) .. just touching (excess < 0)
+    f_low, f_high = excess(low), excess(high)
+    if f_low < 0.0:
+        raise ValueError(f"the hull sinks: fully submerged buoyancy is less than its weight "
+                         f"{weight:.4g} N (density above the water's?)")
+    side = 0
+    z = 0.5 * (low + high)
+    for _ in range(100):
+        z = (low * f_high - high * f_low) / (f_high - f_low)
+        f = excess(z)
+        if abs(f) <= 1e-10 * weight or high - low <= 1e-12 * params.hull.height:
+            break
+        if f > 0.0:
+            low, f_low = z, f
+            if side == 1:
+                f_high *= 0.5
+            side = 1
+        else:
+            high, f_high = z, f
+            if side == -1:
+                f_low *= 0.5
+            side = -1
+    return z
+
+
+def hydrostatic_stiffness(params: BoatParams, z0: float | None = None) -> np.ndarray:
+    """(3,) heave N/m, roll and pitch N m/rad restoring stiffness at the upright equilibrium.
+
+    ``z0``: the equilibrium height if already known (:func:`equilibrium_height`).
+    """
+    z0 = equilibrium_height(params) if z0 is None else z0
+    dz = 1e-3 * params.hull.height
+    da = 1e-3
+    system = System.build([params])
+    k_heave = -(_vertical_buoyancy(system, z0 + dz)[0]
+                - _vertical_buoyancy(system, z0 - dz)[0]) / (2 * dz)
+    k_roll = -(_vertical_buoyancy(system, z0, roll=da)[1][0]
+               - _vertical_buoyancy(system, z0, roll=-da)[1][0]) / (2 * da)
+    k_pitch = -(_vertical_buoyancy(system, z0, pitch=da)[1][1]
+                - _vertical_buoyancy(system, z0, pitch=-da)[1][1]) / (2 * da)
+    return np.array([k_heave, k_roll, k_pitch])
+
+
+def critical_damping(params: BoatParams, ratios: np.ndarray, z0: float | None = None
+                     ) -> np.ndarray:
+    """Linear damping (6,) giving damping ratios zeta = [heave, roll, pitch] (surge/sway/yaw 0).
+
+    b = zeta * 2 sqrt(k m) per DOF, k from :func:`hydrostatic_stiffness`, m the rigid-body
+    mass or inertia plus added mass. A DOF with no restoring stiffness (k <= 0: unstable in
+    roll, say) gets no damping from here. ``z0``: the equilibrium height, if known.
+    """
+    k = hydrostatic_stiffness(replace(params, damping_linear=np.zeros(6)), z0)
+    m = np.array([params.mass + params.added_mass[2], params.inertia[0] + params.added_mass[3],
+                  params.inertia[1] + params.added_mass[4]])
+    b = np.asarray(ratios, dtype=float) * 2.0 * np.sqrt(np.maximum(k, 0.0) * m)
+    out = np.zeros(6)
+    out[[2, 3, 4]] = b
+    return out

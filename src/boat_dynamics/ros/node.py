@@ -1,0 +1,404 @@
+"""The dynamics node: integrates every boat of a scenario and publishes its state and wrenches.
+
+A thin adapter: it checks commands (:mod:`boat_dynamics.physics.commands`), calls the core
+(:func:`boat_dynamics.physics.pipeline.step`, all boats as one fleet) and converts
+(:mod:`boat_msgs_py.convert`). The runner (:mod:`boat_dynamics.ros.runner`) calls
+:meth:`DynamicsNode.advance` once per physics step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from boat_msgs.msg import WaveField as WaveFieldMsg
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
+from rclpy.node import Node
+from rclpy.serialization import serialize_message
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Float64, Float64MultiArray
+
+from boat_dynamics.physics import pipeline
+from boat_dynamics.physics.boat import BoatState, reference_pose
+from boat_dynamics.physics.commands import check_command
+from boat_dynamics.physics.contact import Contact, contact, reference_points
+from boat_dynamics.physics.control import CONTROL_MODES
+from boat_dynamics.physics.diagnostics import active_remedies, fleet_reports
+from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.scenario import BoatSpec, Scenario
+from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
+from boat_dynamics.physics.wrench import cross
+from boat_msgs_py import names
+from boat_msgs_py.cdr import (
+    clock_template,
+    odometry_template,
+    pose_template,
+    stamp_parts,
+    twist_template,
+    wrench_template,
+)
+from boat_msgs_py.convert import diagnostic_array, seconds_to_time, wave_field_from_msg
+from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, DIAGNOSTICS_QOS, STATE_QOS, WAVE_FIELD_QOS
+from boat_msgs_py.tap import Tap, TappedPublisher
+from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
+
+__all__ = ["DynamicsNode", "SimClock"]
+
+
+@dataclass
+class SimClock:
+    """The one simulation clock shared by the nodes of a run.
+
+    Attributes:
+        rate_hz: physics steps per simulated second.
+        epoch: s, message stamp of simulation time 0.
+        steps: physics steps taken.
+    """
+
+    rate_hz: float
+    epoch: float = 0.0
+    steps: int = 0
+
+    @property
+    def t(self) -> float:
+        """Simulation time, s (steps / rate, so it does not accumulate rounding)."""
+        return self.steps / self.rate_hz
+
+    def stamp_ns(self) -> int:
+        """Message / bag timestamp of the current simulation time, ns."""
+        return round((self.epoch + self.t) * 1e9)
+
+
+@dataclass
+class _Boat:
+    spec: BoatSpec
+    index: int  # in the fleet
+    throttle: float = 0.0
+    rudder: float = 0.0
+    last_thrust_t: float = -math.inf
+    timed_out: bool = True
+    pubs: dict[str, TappedPublisher] = field(default_factory=dict)
+    templates: dict = field(default_factory=dict)  # CdrTemplate per published topic
+    subs: list = field(default_factory=list)
+
+
+def _rate_descriptor(description: str, high: float) -> ParameterDescriptor:
+    return ParameterDescriptor(
+        description=description, read_only=True,
+        floating_point_range=[FloatingPointRange(from_value=0.001, to_value=high)],
+    )
+
+
+class DynamicsNode(Node):
+    """Steps the boats of a scenario and publishes their odometry and wrenches.
+
+    Args:
+        scenario: the validated scenario.
+        clock: the shared simulation clock (advanced by this node).
+        publish_clock: publish /clock (the simulation owns time: --fast).
+        tap: also hand every published message to this (recording), or None.
+        name: the node name (``boat_dynamics``; one per boat with ``--processes``).
+    """
+
+    def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
+                 tap: Tap | None = None, name: str = "boat_dynamics") -> None:
+        super().__init__(name)
+        sim = scenario.simulation
+        self._sim_clock = clock
+        self.declare_parameter("rate_hz", sim.rate_hz, _rate_descriptor(
+            "Physics steps per simulated second, Hz (scenario simulation.rate_hz).", 10000.0))
+        self.declare_parameter("publish_rate_hz", sim.publish_rate_hz, _rate_descriptor(
+            "odom / pose / twist messages per simulated second, Hz.", sim.rate_hz))
+        self.declare_parameter("diagnostics_rate_hz", sim.diagnostics_rate_hz, _rate_descriptor(
+            "wrench/* messages per simulated second, Hz.", sim.rate_hz))
+        self.declare_parameter("cmd_timeout", sim.cmd_timeout, ParameterDescriptor(
+            description="s without a cmd_thrust message after which thrust is set to 0.",
+            floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
+        self._cmd_timeout = self.get_parameter("cmd_timeout").value  # read every step: cached
+        self._rate = sim.rate_hz
+        self._substeps = sim.substeps
+        self._dt = 1.0 / (sim.rate_hz * sim.substeps)
+        self._publish_rate = sim.publish_rate_hz
+        self._diag_rate = sim.diagnostics_rate_hz
+        self.sea: WaveField | None = None
+        self._tap = tap
+        self._clock_pub = (TappedPublisher(self, Clock, names.CLOCK, CLOCK_QOS, tap)
+                           if publish_clock else None)
+        self._diag_pub = TappedPublisher(self, DiagnosticArray, names.DIAGNOSTICS,
+                                         DIAGNOSTICS_QOS, tap)
+        self._field_sub = self.create_subscription(
+            WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
+        self._system = System.build([spec.params for spec in scenario.boats])
+        self._state = FleetState.stack([spec.initial for spec in scenario.boats])
+        self._forces: FleetForces | None = None  # acting during the last step
+        # The surface contact of self._state, once /diagnostics or the wrenches needed it:
+        # the next step starts from that state and takes it (one query and clip, not two).
+        self._contact: Contact | None = None
+        self._remedies: list[str] | None = None  # per boat, for /diagnostics (params only)
+        self._clock_template = clock_template()
+        self.boats = [self._make_boat(spec, i) for i, spec in enumerate(scenario.boats)]
+        self.commands_received = 0
+        self.granted_until = 0.0  # lockstep: may step while t < this ...
+        self.granted_commands = 0  # ... once this many commands have arrived
+        self._lockstep_sub = self.create_subscription(
+            Float64MultiArray, names.LOCKSTEP, self._on_lockstep, COMMAND_QOS)
+        self._mode_params = {}
+        for boat in self.boats:
+            name = f"{boat.spec.name}.control_mode" if boat.spec.name else "control_mode"
+            self._mode_params[name] = boat
+            self.declare_parameter(name, boat.spec.params.control.mode, ParameterDescriptor(
+                description=f"Control mode of boat {boat.spec.name or '(root)'}: one of "
+                            f"{', '.join(CONTROL_MODES)}; switching ramps in over "
+                            "control.transition s, without a jump."))
+        self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.add_post_set_parameters_callback(self._after_set_parameters)
+
+    # ------------------------------------------------------------------ set-up
+
+    def _make_boat(self, spec: BoatSpec, index: int) -> _Boat:
+        boat = _Boat(spec=spec, index=index)
+        child = names.child_frame(spec.name)
+        for key, cls, topic, qos in (
+            ("odom", Odometry, names.ODOM, STATE_QOS),
+            ("pose", PoseStamped, names.POSE, STATE_QOS),
+            ("twist", TwistStamped, names.TWIST, STATE_QOS),
+        ):
+            boat.pubs[key] = TappedPublisher(self, cls, names.boat_topic(spec.name, topic), qos,
+                                             self._tap)
+        boat.templates = {"odom": odometry_template(names.WORLD_FRAME, child),
+                          "pose": pose_template(names.WORLD_FRAME),
+                          "twist": twist_template(child), "wrench": wrench_template(child)}
+        for source in names.WRENCH_SOURCES:
+            boat.pubs[source] = TappedPublisher(
+                self, WrenchStamped, names.wrench_topic(spec.name, source), DIAGNOSTICS_QOS,
+                self._tap)
+        label = spec.name or "(root namespace)"
+        if spec.commands is not None:
+            self.get_logger().info(f"boat {label}: scripted commands; ignoring command topics")
+        else:
+            max_rudder = spec.params.rudder.max_angle
+            thrust_topic = names.boat_topic(spec.name, names.CMD_THRUST)
+            rudder_topic = names.boat_topic(spec.name, names.CMD_RUDDER)
+            boat.subs.append(self.create_subscription(
+                Float64, thrust_topic,
+                lambda msg, b=boat, tp=thrust_topic: self._on_thrust(b, tp, msg),
+                COMMAND_QOS))
+            boat.subs.append(self.create_subscription(
+                Float64, rudder_topic,
+                lambda msg, b=boat, tp=rudder_topic, m=max_rudder: self._on_rudder(
+                    b, tp, msg, m),
+                COMMAND_QOS))
+            if self._tap is not None:  # recorded here, at the simulation time they arrive
+                self._tap.topics.update({thrust_topic, rudder_topic})
+        pos, q = reference_pose(spec.params, spec.initial)
+        vel = rotation_matrix(q) @ spec.initial.velocity
+        self.get_logger().info(
+            f"boat {label}: mass {spec.params.mass:g} kg, start at "
+            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the waves at "
+            f"({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
+            f"{names.boat_topic(spec.name, names.ODOM)}")
+        return boat
+
+    def boat_positions(self) -> np.ndarray:
+        """(K, 2) m, world x, y of every boat's hull reference point."""
+        return self._reference_points()[:, :2]
+
+    def state_of(self, boat: _Boat) -> BoatState:
+        """One boat's current state."""
+        return self._state.boat(boat.index)
+
+    def _reference_points(self) -> np.ndarray:
+        """(K, 3) m, world positions of the boats' hull reference points."""
+        return reference_points(self._system, self._state)[1]
+
+    # ------------------------------------------------------------------ callbacks
+
+    def _on_set_parameters(self, params) -> SetParametersResult:
+        for p in params:
+            if p.name in self._mode_params and p.value not in CONTROL_MODES:
+                return SetParametersResult(
+                    successful=False,
+                    reason=f"{p.name} = {p.value!r} is not allowed: one of "
+                           f"{', '.join(CONTROL_MODES)}")
+        for p in params:
+            boat = self._mode_params.get(p.name)
+            if boat is None or p.value == boat.spec.params.control.mode:
+                continue
+            spec = boat.spec
+            control = replace(spec.params.control, mode=p.value)
+            boat.spec = replace(spec, params=replace(spec.params, control=control))
+            weights = self._state.control_weight.copy()
+            weights[boat.index] = 0.0
+            self._state = replace(self._state, control_weight=weights)
+            self._system = System.build([b.spec.params for b in self.boats])
+            self._remedies = None  # the mode is among them
+            self.get_logger().info(f"{p.name}: now {p.value} (taking over in "
+                                   f"{control.transition:g} s)")
+        return SetParametersResult(successful=True)
+
+    def _after_set_parameters(self, params) -> None:
+        """Keep the cached copies of parameters read every step (called once they are set)."""
+        for p in params:
+            if p.name == "cmd_timeout":
+                self._cmd_timeout = float(p.value)
+
+    def _on_wave_field(self, msg: WaveFieldMsg) -> None:
+        try:
+            sea = wave_field_from_msg(msg)
+        except InvalidSeaStateError as exc:
+            self.get_logger().error(f"ignoring invalid {names.WAVE_FIELD}: {exc}; keeping the "
+                                    "previous sea state")
+            return
+        first = self.sea is None
+        self.sea = sea
+        self.get_logger().info(
+            f"{'received' if first else 'updated'} sea state: {len(sea.components)} components")
+
+    def _on_lockstep(self, msg: Float64MultiArray) -> None:
+        if len(msg.data) >= 2:
+            self.granted_until = max(self.granted_until, float(msg.data[0]))
+            self.granted_commands = max(self.granted_commands, int(msg.data[1]))
+
+    def repeat_clock(self) -> None:
+        """Republish /clock at the current time (lockstep hold: late joiners see it), unrecorded."""
+        if self._clock_pub is not None:
+            stamp = seconds_to_time(self._sim_clock.epoch + self._sim_clock.t)
+            self._clock_pub.publish_untapped(Clock(clock=stamp))
+
+    def may_step(self) -> bool:
+        """Lockstep: the replayer has granted the next step and its commands have arrived."""
+        return (self._sim_clock.t < self.granted_until - 1e-9
+                and self.commands_received >= self.granted_commands)
+
+    def _record_command(self, topic: str, msg: Float64) -> None:
+        self.commands_received += 1
+        if self._tap is not None:
+            self._tap.sink(topic, "std_msgs/msg/Float64", serialize_message(msg))
+
+    def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
+        self._record_command(topic, msg)
+        raw = msg.data
+        checked = check_command(raw, -1.0, 1.0)
+        if checked.problem:
+            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        if checked.value is None:
+            return
+        boat.throttle = checked.value
+        boat.last_thrust_t = self._sim_clock.t
+        boat.timed_out = False
+
+    def _on_rudder(self, boat: _Boat, topic: str, msg: Float64, max_angle: float) -> None:
+        self._record_command(topic, msg)
+        raw = msg.data
+        checked = check_command(raw, -max_angle, max_angle, "rad")
+        if checked.problem:
+            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        if checked.value is not None:
+            boat.rudder = checked.value
+
+    # ------------------------------------------------------------------ stepping
+
+    def _inputs(self, boat: _Boat) -> tuple[float, float]:
+        """(throttle, rudder rad) for the next step: scripted, or the last valid commands."""
+        t = self._sim_clock.t
+        if boat.spec.commands is not None:
+            return boat.spec.commands.at(t)
+        timeout = self._cmd_timeout
+        if not boat.timed_out and t - boat.last_thrust_t > timeout:
+            boat.timed_out = True
+            if boat.throttle != 0.0:
+                self.get_logger().warning(
+                    f"{names.boat_topic(boat.spec.name, names.CMD_THRUST)}: no command for "
+                    f"{timeout:g} s; thrust set to 0")
+            boat.throttle = 0.0
+        return boat.throttle, boat.rudder
+
+    @staticmethod
+    def _due(k: int, rate: float, out_rate: float) -> bool:
+        """True on the steps where a stream at ``out_rate`` Hz publishes (step 0 included)."""
+        return k == 0 or math.floor(k * out_rate / rate) > math.floor((k - 1) * out_rate / rate)
+
+    def _contact_if_known(self) -> Contact | None:
+        """The kept surface contact, if it is the current state's (else None)."""
+        c = self._contact
+        return c if c is not None and c.belongs_to(self._system, self._state, self.sea) else None
+
+    def _current_contact(self) -> Contact:
+        """The surface contact of the current state, computed once and kept for the step."""
+        self._contact = self._contact_if_known() or contact(self._system, self._state,
+                                                            self.sea)
+        return self._contact
+
+    def advance(self) -> None:
+        """Take one physics step for every boat, then publish what is due."""
+        if self.sea is None:
+            raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
+        commands = np.array([self._inputs(b) for b in self.boats], dtype=float).reshape(-1, 2)
+        inputs = FleetInputs(commands[:, 0], commands[:, 1])
+        for _ in range(self._substeps):
+            done = pipeline.step(self._system, self._state, inputs, self.sea, self._dt,
+                                 self._contact_if_known())
+            self._state, self._forces, self._contact = done.state, done.forces, None
+        self._sim_clock.steps += 1
+        self.publish_outputs()
+
+    def publish_outputs(self) -> None:
+        """Publish /clock, odometry and wrenches that are due at the current step."""
+        k = self._sim_clock.steps
+        sec, nanosec = stamp_parts(self._sim_clock.epoch + self._sim_clock.t)
+        if self._clock_pub is not None:
+            self._clock_pub.publish(self._clock_template.pack(sec, nanosec))
+        if self._due(k, self._rate, self._publish_rate):
+            self._publish_states(sec, nanosec)
+        if self._due(k, self._rate, self._diag_rate):
+            self._publish_wrenches(sec, nanosec)
+            self._publish_diagnostics(seconds_to_time(self._sim_clock.epoch
+                                                      + self._sim_clock.t))
+
+    def _publish_states(self, sec: int, nanosec: int) -> None:
+        """odom, pose and twist of every boat: the hull reference point's pose and twist."""
+        state = self._state
+        pos = self._reference_points().tolist()
+        quat = state.orientation.tolist()
+        # velocity of the reference point: v_com + w x (r_ref - r_com), body frame
+        v_ref = (state.velocity - cross(state.angular_velocity, self._system.center_of_mass)
+                 ).tolist()
+        omega = state.angular_velocity.tolist()
+        for boat in self.boats:
+            i, t = boat.index, boat.templates
+            boat.pubs["odom"].publish(t["odom"].pack(sec, nanosec, *pos[i], *quat[i], *v_ref[i],
+                                                     *omega[i]))
+            boat.pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
+            boat.pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
+
+    def _publish_wrenches(self, sec: int, nanosec: int) -> None:
+        """wrench/<source> of every boat: the forces that acted during the last step."""
+        forces = self._forces
+        if forces is None:  # before the first step: the forces at the initial state
+            commands = np.array([self._inputs(b) for b in self.boats], dtype=float)
+            forces, _ = pipeline.forces(self._system, self._state,
+                                        FleetInputs(commands[:, 0], commands[:, 1]),
+                                        self._current_contact())
+        rows = {source: np.concatenate([getattr(forces, source).force,
+                                        getattr(forces, source).torque], axis=1).tolist()
+                for source in names.WRENCH_SOURCES}
+        for boat in self.boats:
+            template = boat.templates["wrench"]
+            for source in names.WRENCH_SOURCES:
+                boat.pubs[source].publish(template.pack(sec, nanosec, *rows[source][boat.index]))
+
+    def _publish_diagnostics(self, stamp) -> None:
+        """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""
+        if self._remedies is None:
+            self._remedies = ["; ".join(active_remedies(b.spec.params, self._substeps))
+                              for b in self.boats]
+        reports = fleet_reports(self._system, self._state, self._current_contact(),
+                                self._substeps,
+                                remedies=self._remedies)
+        self._diag_pub.publish(diagnostic_array(stamp, [
+            (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message, r.values)
+            for boat, r in zip(self.boats, reports, strict=True)]))

@@ -1,0 +1,264 @@
+"""`boatsim run`: the ocean node and the dynamics node in one process, on one clock.
+
+The loop takes one physics step, publishes what is due, then serves ROS callbacks (commands,
+service calls) until the next step is due: paced to the wall clock in real time, or with no
+waiting at all in ``--fast`` mode, where the simulation publishes /clock.
+"""
+
+from __future__ import annotations
+
+import math
+import signal
+import sys
+import threading
+import time
+from dataclasses import dataclass, replace
+from typing import TextIO
+
+import rclpy
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor, TimeoutException
+from rclpy.signals import SignalHandlerOptions
+
+from boat_dynamics.physics.boat import afloat, reference_pose
+from boat_dynamics.physics.rigid_body import quat_to_euler
+from boat_dynamics.physics.scenario import Scenario
+from boat_dynamics.ros.node import DynamicsNode, SimClock
+from boat_dynamics.tools.recording import BagWriter, TopicRecorder
+from boat_msgs_py.qos import RECORD_QOS
+from ocean_sim.ros.node import OceanNode
+
+__all__ = ["RunOptions", "run"]
+
+#: How long to wait for the dynamics node to receive the first wave field, s (wall).
+_FIELD_TIMEOUT = 10.0
+#: Wall-clock period of the live status line, s.
+_STATUS_PERIOD = 0.25
+#: Wall-clock period of the status line when stderr is not a terminal, s.
+_LOG_STATUS_PERIOD = 5.0
+#: Wall-clock period of topic discovery for the recorder, s.
+_DISCOVERY_PERIOD = 1.0
+#: In --fast mode, serve ROS callbacks (commands, service calls) at most this often, s (wall).
+#: rclpy rebuilds its wait set on every spin (about 5 ms with 10 boats' entities, measured),
+#: so spinning after every physics step cost as much as the physics.
+_FAST_SPIN_PERIOD = 0.05
+#: ... and spend at most this fraction of the wall time on it: the wait set grows with the
+#: boats (2 command subscriptions each), and with 100 boats a spin took 4 ms per 10 ms step,
+#: more than the physics. With more boats, callbacks are then served less often than every
+#: _FAST_SPIN_PERIOD (0.2 s of wall time with 100 boats).
+_FAST_SPIN_SHARE = 0.1
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How to run a scenario.
+
+    Attributes:
+        fast: run as fast as possible and publish /clock (else paced to real time).
+        duration: s of simulated time, None = until stopped.
+        record: directory of a rosbag2 (MCAP) bag to write, or None.
+        role: ``all`` (ocean and every boat), ``ocean`` or ``boat`` (one process of
+            ``--processes``).
+        boat: the boat of a ``boat`` role.
+        epoch: s (wall clock) of simulation time 0, shared by the processes of a run; None =
+            now (or 0 with ``fast``).
+        lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
+    """
+
+    fast: bool = False
+    duration: float | None = None
+    record: str | None = None
+    role: str = "all"
+    boat: str | None = None
+    epoch: float | None = None
+    lockstep: bool = False
+
+
+def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
+    """Run the callbacks that are ready now, without waiting (at most ``limit``)."""
+    for _ in range(limit):
+        try:
+            handler, _, _ = executor.wait_for_ready_callbacks(timeout_sec=0.0)
+        except TimeoutException:
+            return
+        handler()
+        if handler.exception() is not None:
+            raise handler.exception()
+
+
+class _Status:
+    """The live status line: sim time, real-time factor, first boat's position, speed, heading."""
+
+    def __init__(self, stream: TextIO, n_boats: int) -> None:
+        self._stream = stream
+        self._tty = stream.isatty()
+        self._period = _STATUS_PERIOD if self._tty else _LOG_STATUS_PERIOD
+        self._n = n_boats
+        self._wall0 = time.monotonic()
+        self._t0 = 0.0
+        self._next = self._wall0 + self._period
+        self._written = False
+        self._last_t: float | None = None
+
+    def start(self, t: float) -> None:
+        """The simulation loop starts at simulation time ``t``.
+
+        The real-time factor counts from here: set-up and waiting for the sea state are not
+        simulation.
+        """
+        self._wall0 = time.monotonic()
+        self._t0 = t
+        self._next = self._wall0 + self._period
+
+    def update(self, node: DynamicsNode, t: float, force: bool = False) -> None:
+        now = time.monotonic()
+        if (not force and now < self._next) or t == self._last_t:
+            return
+        self._next = now + self._period
+        self._last_t = t
+        boat = node.boats[0]
+        state = node.state_of(boat)
+        pos, q = reference_pose(boat.spec.params, state)
+        speed = math.hypot(state.velocity[0], state.velocity[1])
+        heading = math.degrees(quat_to_euler(q)[2])
+        rtf = (t - self._t0) / max(now - self._wall0, 1e-9)
+        label = boat.spec.name or "boat"
+        more = f" (+{self._n - 1} boats)" if self._n > 1 else ""
+        line = (f"t {t:8.2f} s  x{rtf:6.2f}  {label}{more}: pos ({pos[0]:7.2f}, {pos[1]:7.2f}, "
+                f"{pos[2]:5.2f}) m  speed {speed:5.2f} m/s  heading {heading:6.1f} deg")
+        if self._tty:
+            self._stream.write("\r" + line)
+            self._written = True
+        else:
+            self._stream.write(line + "\n")
+        self._stream.flush()
+
+    def close(self) -> None:
+        if self._written:
+            self._stream.write("\n")
+            self._stream.flush()
+
+
+def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) -> int:
+    """Run a scenario until its duration, Ctrl-C or SIGTERM. Returns the exit status (0).
+
+    SIGINT and SIGTERM only set a flag that the loop checks after every step, so the step in
+    progress completes, the bag is finalized and the nodes are destroyed before ROS shuts down.
+
+    Raises:
+        RecordError: the bag directory cannot be created.
+    """
+    sim = scenario.simulation
+    fast = options.fast or not sim.realtime
+    duration = options.duration if options.duration is not None else sim.duration
+    epoch = options.epoch if options.epoch is not None else (0.0 if fast else time.time())
+    clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
+    if options.epoch is not None and not fast:  # joining a run that started at the epoch
+        clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
+    if options.role == "boat":
+        # joining at clock.t: afloat there, as the scenario's boats are at t = 0
+        scenario = replace(scenario, boats=tuple(
+            replace(b, initial=afloat(b.params, replace(b.initial, t=clock.t), scenario.sea))
+            for b in scenario.boats if b.name == options.boat))
+    bag = BagWriter(options.record) if options.record else None
+    tap = bag.tap(clock.stamp_ns) if bag is not None else None
+
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set())
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    executor = SingleThreadedExecutor()
+    nodes = []
+    display = _Status(status, len(scenario.boats))
+    try:
+        dynamics = ocean = None
+        if options.role in ("all", "boat"):
+            name = "boat_dynamics" if options.role == "all" else f"boat_dynamics_{options.boat}"
+            dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name)
+            nodes.append(dynamics)
+        if options.role in ("all", "ocean"):
+            ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
+                              surface_centers=dynamics.boat_positions if dynamics else None)
+            nodes.append(ocean)
+        logger = nodes[0].get_logger()
+        recorder = None
+        if bag is not None:
+            # The sim's own topics are tapped at their publishers; the recorder takes the rest.
+            recorder = TopicRecorder(
+                nodes[0], bag, clock.stamp_ns, skip=tap.topics,
+                qos=RECORD_QOS)
+            recorder.discover()
+        for n in nodes:
+            executor.add_node(n)
+        deadline = time.monotonic() + _FIELD_TIMEOUT
+        while dynamics is not None and dynamics.sea is None and not stop.is_set():
+            if time.monotonic() > deadline:
+                logger.error("no wave field received from the ocean node")
+                return 1
+            executor.spin_once(timeout_sec=0.05)
+        if stop.is_set():
+            return 0
+        if dynamics is not None:
+            dynamics.publish_outputs()
+        if ocean is not None:
+            ocean.advance(clock.t)
+        logger.info(
+            f"running {scenario.source}: {len(scenario.boats) if dynamics else 0} boat(s) at "
+            f"{sim.rate_hz:g} Hz, "
+            f"{'as fast as possible (/clock published)' if fast else 'real time'}"
+            + (f", for {duration:g} s" if duration else "")
+            + (f", recording to {bag.path}" if bag else ""))
+        wall0 = time.time() - clock.t if options.epoch is None else epoch
+        next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+        next_spin = 0.0
+        display.start(clock.t)
+        while (duration is None or clock.t < duration - 0.5 / sim.rate_hz) and not stop.is_set():
+            if options.lockstep and dynamics is not None:
+                next_repeat = time.monotonic() + 0.1
+                while not dynamics.may_step() and not stop.is_set():
+                    executor.spin_once(timeout_sec=0.01)
+                    if time.monotonic() >= next_repeat:
+                        dynamics.repeat_clock()
+                        next_repeat = time.monotonic() + 0.1
+                if stop.is_set():
+                    break
+            if dynamics is not None:
+                dynamics.advance()
+            else:
+                clock.steps += 1
+            if ocean is not None:
+                ocean.advance(clock.t)
+            if fast and options.lockstep:
+                _spin_pending(executor)
+            elif fast:
+                if (now := time.monotonic()) >= next_spin:
+                    _spin_pending(executor)
+                    spent = time.monotonic() - now
+                    next_spin = now + spent + max(_FAST_SPIN_PERIOD, spent / _FAST_SPIN_SHARE)
+            else:
+                step_due = wall0 + clock.t
+                while (remaining := step_due - time.time()) > 0 and not stop.is_set():
+                    executor.spin_once(timeout_sec=remaining)
+            if recorder is not None and time.monotonic() > next_discovery:
+                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+                recorder.discover()
+            if dynamics is not None:
+                display.update(dynamics, clock.t)
+        if dynamics is not None:
+            display.update(dynamics, clock.t, force=True)
+        return 0
+    except (KeyboardInterrupt, ExternalShutdownException):
+        return 0
+    finally:
+        display.close()
+        if bag is not None:
+            bag.close()
+            total = sum(bag.counts.values())
+            print(f"boatsim: wrote {total} messages on {len(bag.counts)} topics to {bag.path}",
+                  file=status)
+        for n in nodes:
+            executor.remove_node(n)
+            n.destroy_node()
+        executor.shutdown(timeout_sec=0.1)
+        rclpy.try_shutdown()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

@@ -1,0 +1,242 @@
+"""rosbag2 (MCAP) recording through rosbags, without ros2cli.
+
+:class:`BagWriter` writes serialized messages; :class:`TopicRecorder` subscribes generically
+(raw serialized messages, no per-type code) to every topic it discovers and writes them.
+The simulation's own publishers hand their serialized messages to the same writer directly
+(:class:`boat_msgs_py.tap.TappedPublisher`), so nothing it publishes can be dropped by a slow
+subscriber.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import TextIO
+
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+from boat_msgs_py.qos import RECORD_QOS, latched
+from boat_msgs_py.tap import Tap
+
+__all__ = ["BagWriter", "RecordError", "TopicRecorder", "record"]
+
+
+class RecordError(RuntimeError):
+    """A bag that cannot be written (the directory exists, or is not writable)."""
+
+
+def _boat_msgs_dir() -> Path:
+    """share/boat_msgs/msg of the install: an ament prefix (colcon) or this venv (PyPI set-up)."""
+    prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    for prefix in [*prefixes, sys.prefix]:
+        candidate = Path(prefix) / "share" / "boat_msgs" / "msg"
+        if candidate.is_dir():
+            return candidate
+    raise RecordError("boat_msgs is not installed (no share/boat_msgs/msg in AMENT_PREFIX_PATH "
+                      f"or {sys.prefix}); run `make setup`")
+
+
+def _typestore():
+    store = get_typestore(Stores.ROS2_JAZZY)
+    msg_dir = _boat_msgs_dir()
+    types = {}
+    for path in sorted(msg_dir.glob("*.msg")):
+        types.update(get_types_from_msg(path.read_text(), f"boat_msgs/msg/{path.stem}"))
+    store.register(types)
+    return store
+
+
+def _bag_qos(profile: QoSProfile):
+    """Rosbags' Qos of an rclpy QoSProfile (enum values are the rmw ones in both)."""
+    from rosbags.interfaces import (
+        Qos,
+        QosDurability,
+        QosHistory,
+        QosLiveliness,
+        QosReliability,
+        QosTime,
+    )
+
+    def span(d) -> QosTime:
+        ns = d.nanoseconds
+        return QosTime(ns // 1_000_000_000, ns % 1_000_000_000)
+
+    return Qos(QosHistory(int(profile.history)), int(profile.depth),
+               QosReliability(int(profile.reliability)), QosDurability(int(profile.durability)),
+               span(profile.deadline), span(profile.lifespan),
+               QosLiveliness(int(profile.liveliness)), span(profile.liveliness_lease_duration),
+               bool(profile.avoid_ros_namespace_conventions))
+
+
+class BagWriter:
+    """A rosbag2 bag with MCAP storage, written from serialized (CDR) messages.
+
+    Args:
+        path: directory to create; must not exist.
+    """
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        if self.path.exists():
+            raise RecordError(f"{self.path} already exists; choose a new directory for the bag")
+        self._store = _typestore()
+        self._writer = Writer(self.path, version=9, storage_plugin=StoragePlugin.MCAP)
+        try:
+            self._writer.open()
+        except Exception as exc:  # rosbags raises its own WriterError or OSError
+            raise RecordError(f"cannot create bag {self.path}: {exc}") from exc
+        self._connections: dict[str, object] = {}
+        self.counts: dict[str, int] = {}
+        self._closed = False
+
+    def write(self, topic: str, msgtype: str, data: bytes, stamp_ns: int,
+              qos: QoSProfile | None = None) -> None:
+        """Append one serialized message of type ``msgtype`` on ``topic`` at ``stamp_ns``.
+
+        ``qos``: the publisher's offered QoS, stored in the bag's metadata with the topic's
+        first message (``ros2 bag play`` offers it again).
+        """
+        conn = self._connections.get(topic)
+        if conn is None:
+            offered = (_bag_qos(qos),) if qos is not None else ()
+            conn = self._writer.add_connection(topic, msgtype, typestore=self._store,
+                                               offered_qos_profiles=offered)
+            self._connections[topic] = conn
+            self.counts[topic] = 0
+        self._writer.write(conn, stamp_ns, data)
+        self.counts[topic] += 1
+
+    def tap(self, stamp_ns: Callable[[], int]) -> Tap:
+        """A :class:`Tap` writing into this bag, stamped by ``stamp_ns()`` (ns)."""
+        tap = Tap(lambda topic, msgtype, data: self.write(topic, msgtype, data, stamp_ns(),
+                                                          tap.qos.get(topic)))
+        return tap
+
+    def close(self) -> None:
+        """Finalize the bag (metadata.yaml and MCAP summary). Safe to call twice."""
+        if not self._closed:
+            self._closed = True
+            self._writer.close()
+
+
+class TopicRecorder:
+    """Records every topic it discovers on the graph, as raw serialized messages.
+
+    Args:
+        node: node to create the subscriptions on.
+        bag: where to write.
+        stamp_ns: bag timestamp of the current time, ns.
+        skip: topics not to subscribe to (those already tapped at their publisher).
+        qos: subscription QoS.
+    """
+
+    def __init__(self, node: Node, bag: BagWriter, stamp_ns: Callable[[], int],
+                 skip: set[str], qos: QoSProfile, only: set[str] | None = None) -> None:
+        self._node = node
+        self._bag = bag
+        self._stamp_ns = stamp_ns
+        self._skip = skip
+        self._qos = qos
+        self._only = only
+        self._subs: dict[str, object] = {}
+
+    def discover(self) -> None:
+        """Subscribe to topics that appeared since the last call."""
+        for topic, types in self._node.get_topic_names_and_types():
+            if topic in self._subs or topic in self._skip or not types:
+                continue
+            if self._only is not None and topic not in self._only:
+                continue
+            msgtype = types[0]
+            pkg, kind, name = msgtype.split("/")
+            try:
+                cls = getattr(importlib.import_module(f"{pkg}.{kind}"), name)
+            except (ImportError, AttributeError):
+                self._node.get_logger().warning(
+                    f"not recording {topic}: type {msgtype} is not installed here")
+                self._subs[topic] = None
+                continue
+            publishers = self._node.get_publishers_info_by_topic(topic)
+            if not publishers:
+                continue  # known only from a subscriber so far: wait for a publisher's QoS
+            qos = self._qos
+            if all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
+                   for p in publishers):
+                # latched topics (/ocean/wave_field): ask for what was published before us
+                qos = latched(self._qos)
+            self._subs[topic] = self._node.create_subscription(
+                cls, topic, self._writer_for(topic, msgtype, publishers[0].qos_profile), qos,
+                raw=True)
+            self._node.get_logger().info(f"recording {topic} [{msgtype}]")
+
+    def _writer_for(self, topic: str, msgtype: str, offered: QoSProfile
+                    ) -> Callable[[bytes], None]:
+        def on_message(data: bytes) -> None:
+            self._bag.write(topic, msgtype, data, self._stamp_ns(), offered)
+        return on_message
+
+
+def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
+    """`boatsim record`: record topics (all when empty) until Ctrl-C; returns the exit status.
+
+    New topics are picked up as they appear (discovery every 0.2 s); a live line shows the
+    count per topic; SIGINT/SIGTERM finalize the bag.
+
+    Raises:
+        RecordError: the bag directory cannot be created.
+    """
+    import signal
+    import threading
+    import time
+
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.signals import SignalHandlerOptions
+
+    bag = BagWriter(out)
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set())
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    node = rclpy.create_node("boatsim_record")
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    tty = status.isatty()
+    try:
+        recorder = TopicRecorder(
+            node, bag, time.time_ns, skip=set(),
+            qos=RECORD_QOS,
+            only=set(topics) if topics else None)
+        node.get_logger().info(f"recording {'all topics' if not topics else ' '.join(topics)}"
+                               f" to {bag.path}; Ctrl-C to stop")
+        next_discovery = next_status = 0.0
+        while not stop.is_set():
+            now = time.monotonic()
+            if now >= next_discovery:
+                recorder.discover()
+                next_discovery = now + 0.2  # new topics are caught within 0.2 s
+            if now >= next_status:
+                counts = "  ".join(f"{t} {n}" for t, n in sorted(bag.counts.items()))
+                line = f"{sum(bag.counts.values())} messages: {counts}"
+                status.write(("\r" + line[:200]) if tty else line + "\n")
+                status.flush()
+                next_status = now + (0.5 if tty else 5.0)
+            executor.spin_once(timeout_sec=0.05)
+        return 0
+    finally:
+        bag.close()
+        if tty:
+            status.write("\n")
+        print(f"boatsim: wrote {sum(bag.counts.values())} messages on {len(bag.counts)} "
+              f"topics to {bag.path}", file=status)
+        executor.shutdown(timeout_sec=0.1)
+        node.destroy_node()
+        rclpy.try_shutdown()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

@@ -1,0 +1,142 @@
+"""`boatsim replay BAG`: republish a bag's command topics at their recorded simulation times.
+
+Times: a command's bag timestamp minus the bag's simulation epoch (the header stamp of its
+/ocean/wave_field, which is the stamp of simulation time 0), so bags of real-time and fast
+runs replay alike.
+
+Against ``boatsim run --fast --lockstep`` the replay is in lockstep: before command i (due at
+t_i) it grants "advance while t < t_i" on /boatsim/lockstep, waits on /clock until the
+simulation holds at t_i, publishes the command, and grants the next time together with the
+number of commands sent, so the simulation never steps past a command it has not received.
+Each command then takes effect at the same step on a fast or a slow machine. Against a
+real-time simulation the commands are published on the wall clock (times divided by
+``rate``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from boat_dynamics.tools.bags import BagError, read_bag, read_bag_topics
+from boat_msgs_py import names
+
+__all__ = ["Command", "ReplayError", "command_schedule", "replay"]
+
+_FOREVER = 1e18  # the last grant: run on to the end
+
+
+class ReplayError(RuntimeError):
+    """No simulation to replay into, or it stopped answering."""
+
+
+@dataclass(frozen=True)
+class Command:
+    """One command of a replay.
+
+    Attributes:
+        t: simulation time, s.
+        topic: the command topic.
+        value: the Float64 value.
+    """
+
+    t: float
+    topic: str
+    value: float
+
+
+def command_schedule(bag: str | Path, topics: list[str] | None = None) -> list[Command]:
+    """The bag's commands in simulation time, in order.
+
+    Raises:
+        BagError: unreadable bag, no command topics, or a topic not in the bag.
+    """
+    available = read_bag_topics(bag)
+    if topics is None:
+        topics = [t for t in available
+                  if any(names.boat_of(t, n) is not None for n in names.COMMAND_NAMES)]
+        if not topics:
+            raise BagError(f"{bag}: no command topics (*/cmd_thrust, */cmd_rudder) to replay")
+    wanted = list(topics)
+    if names.WAVE_FIELD in available:
+        wanted.append(names.WAVE_FIELD)
+    messages = read_bag(bag, wanted)
+    field = messages.pop(names.WAVE_FIELD, [])
+    stamps = [s for msgs in messages.values() for s, _ in msgs]
+    epoch = field[0][0] if field else (min(stamps) if stamps else 0)
+    out = [Command((stamp - epoch) / 1e9, topic, float(msg.data))
+           for topic, msgs in messages.items() for stamp, msg in msgs]
+    return sorted(out, key=lambda c: c.t)
+
+
+def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
+           timeout: float = 30.0) -> int:
+    """Replay the commands of ``bag`` into the running simulation; returns the exit status.
+
+    Raises:
+        BagError: unreadable bag or topics.
+        ReplayError: no simulation subscribes to the command topics within ``timeout``.
+    """
+    import rclpy
+    from rclpy.executors import SingleThreadedExecutor
+    from rosgraph_msgs.msg import Clock
+    from std_msgs.msg import Float64, Float64MultiArray
+
+    from boat_msgs_py import names
+    from boat_msgs_py.convert import time_to_seconds
+    from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
+
+    schedule = command_schedule(bag, topics)
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = rclpy.create_node("boatsim_replay", context=context)
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(node)
+    clock = [math.nan]
+    node.create_subscription(Clock, names.CLOCK,
+                             lambda m: clock.__setitem__(0, time_to_seconds(m.clock)), CLOCK_QOS)
+    pubs = {t: node.create_publisher(Float64, t, COMMAND_QOS)
+            for t in sorted({c.topic for c in schedule})}
+    grant = node.create_publisher(Float64MultiArray, names.LOCKSTEP, COMMAND_QOS)
+    log = node.get_logger()
+
+    def spin_until(condition, what: str) -> None:
+        deadline = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > deadline:
+                raise ReplayError(f"timed out after {timeout:g} s waiting for {what}")
+            executor.spin_once(timeout_sec=0.01)
+
+    try:
+        spin_until(lambda: all(p.get_subscription_count() > 0 for p in pubs.values())
+                   and grant.get_subscription_count() > 0,
+                   f"a simulation subscribing to {', '.join(pubs)}")
+        deadline = time.monotonic() + 2.0
+        while math.isnan(clock[0]) and time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.05)
+        lockstep = not math.isnan(clock[0])
+        log.info(f"replaying {len(schedule)} commands from {bag} "
+                 f"({'lockstep with /clock' if lockstep else f'wall clock x{rate:g}'})")
+        sent = 0
+        start = time.monotonic()
+        for command in schedule:
+            if lockstep:
+                grant.publish(Float64MultiArray(data=[command.t, float(sent)]))
+                spin_until(lambda t=command.t: clock[0] >= t - 1e-9,
+                           f"the simulation to reach t = {command.t:.3f} s")
+            else:
+                spin_until(lambda t=command.t: (time.monotonic() - start) * rate >= t,
+                           "the wall clock")
+            pubs[command.topic].publish(Float64(data=command.value))
+            sent += 1
+        if lockstep:
+            grant.publish(Float64MultiArray(data=[_FOREVER, float(sent)]))
+            executor.spin_once(timeout_sec=0.1)
+        log.info(f"replayed {sent} commands")
+        return 0
+    finally:
+        executor.shutdown(timeout_sec=0.1)
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)

@@ -1,0 +1,135 @@
+"""Propulsion options, rudder models, keel reflection, Stokes drift option."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from boat_dynamics.physics.boat import BoatInputs, initial_state, step
+from boat_dynamics.physics.keel import reflect_off_keel
+from boat_dynamics.physics.propulsion import Propulsion, lagged_throttle, thrust
+from boat_dynamics.physics.rudder import Rudder, rudder_wrench
+from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+from ocean_sim.physics.waves import WaveComponent, WaveField, stokes_drift
+
+STERN = np.array([-2.0, 0.0, -0.3])
+AHEAD = np.array([1.0, 0.0, 0.0])
+COM = np.array([0.0, 0.0, -0.2])
+
+
+def test_thrust_lag_is_first_order():
+    model = Propulsion(1000.0, STERN, AHEAD, time_constant=2.0)
+    actual, dt = 0.0, 0.01
+    for _ in range(200):  # one time constant
+        actual = lagged_throttle(model, actual, 1.0, dt)
+    assert actual == pytest.approx(1 - math.exp(-1.0), rel=1e-12)
+    assert lagged_throttle(Propulsion(1000.0, STERN, AHEAD), 0.3, -0.7, dt) == -0.7
+
+
+def test_thrust_at_the_stern_below_the_com_pitches_and_at_the_com_does_not():
+    stern = thrust(Propulsion(1000.0, STERN, AHEAD), 1.0, 0.0, COM)
+    assert stern.force.tolist() == [1000.0, 0.0, 0.0]
+    # r_z = -0.1 m: r x F = -100 N m about +y; in FLU that is bow up (+y rotation is bow down)
+    assert stern.torque[1] == pytest.approx(-1000.0 * 0.1)
+    at_com = thrust(Propulsion(1000.0, STERN, AHEAD, at_center_of_mass=True), 1.0, 0.3, COM)
+    assert at_com.torque.tolist() == [0.0, 0.0, 0.0]
+
+
+def test_steerable_nozzle_turns_the_bow_to_port_for_a_positive_angle():
+    w = thrust(Propulsion(1000.0, STERN, AHEAD, steerable=True), 1.0, 0.3, COM)
+    assert w.force[0] == pytest.approx(1000 * math.cos(0.3))
+    assert w.force[1] == pytest.approx(-1000 * math.sin(0.3))  # stern pushed to starboard
+    assert w.torque[2] > 0  # yaw to port
+    fixed = thrust(Propulsion(1000.0, STERN, AHEAD), 1.0, 0.3, COM)
+    assert fixed.torque[2] == 0.0
+
+
+def test_rudder_models():
+    lift = Rudder("lift", math.radians(35), 0.25, 1.0, np.array([-2.0, 0, -0.5]))
+    w1 = rudder_wrench(lift, 0.3, 2.0, 1025.0, COM)
+    w2 = rudder_wrench(lift, 0.3, 4.0, 1025.0, COM)
+    assert w1.force[1] == pytest.approx(-0.5 * 1025 * 0.25 * 4.0 * math.sin(0.3))
+    assert w2.torque[2] == pytest.approx(4 * w1.torque[2]) and w1.torque[2] > 0
+    assert rudder_wrench(lift, 0.3, -2.0, 1025.0, COM).torque[2] < 0  # astern: reversed
+    assert rudder_wrench(lift, 0.3, 0.0, 1025.0, COM).torque[2] == 0.0
+
+    arcade = Rudder("torque", 0.5, max_torque=800.0)
+    for u in (0.0, 3.0):
+        w = rudder_wrench(arcade, 0.25, u, 1025.0, COM)
+        assert w.torque.tolist() == [0.0, 0.0, 400.0] and not w.force.any()
+
+    hybrid = Rudder("hybrid", 0.5, max_torque=800.0, base_torque=200.0, max_speed=4.0)
+    assert rudder_wrench(hybrid, 0.5, 0.0, 1025.0, COM).torque[2] == pytest.approx(200.0)
+    assert rudder_wrench(hybrid, 0.5, 4.0, 1025.0, COM).torque[2] == pytest.approx(1000.0)
+    assert rudder_wrench(hybrid, -0.25, 2.0, 1025.0, COM).torque[2] == pytest.approx(-300.0)
+    assert not rudder_wrench(Rudder("none"), 0.5, 3.0, 1025.0, COM).torque.any()
+
+
+def test_keel_reflection_turns_drift_into_headway_keeping_speed():
+    v = np.array([2.0, 1.5, 0.1])
+    out = v
+    for _ in range(100):
+        out = reflect_off_keel(out, 2.0, 0.01)
+    assert out[1] == pytest.approx(1.5 * math.exp(-2.0))
+    assert np.hypot(out[0], out[1]) == pytest.approx(np.hypot(2.0, 1.5), rel=1e-12)
+    assert out[2] == 0.1 and out[0] > 2.0
+    back = reflect_off_keel(np.array([-1.0, 1.0, 0.0]), 5.0, 0.1)
+    assert back[0] < -1.0  # astern stays astern
+
+
+def test_stokes_drift_option_carries_the_boat_with_the_waves(boat_factory):
+    sea = WaveField((WaveComponent(0.6, 15.0, 0.0, 0.0, 0.0),))  # sine wave: no Gerstner mean
+    u_s = stokes_drift(sea)[0]
+    params = boat_factory(model="mesh", linear=(3000, 20000, 20000, 5000, 20000, 5000))
+
+    def mean_drift(flag):
+        p = replace(params, stokes_drift=flag)
+        s = initial_state(p, [0.0, 0.0, 0.0])
+        for _ in range(6000):
+            s = step(p, s, BoatInputs(), sea, 0.01)
+        x0 = s.position[0]
+        for _ in range(6000):
+            s = step(p, s, BoatInputs(), sea, 0.01)
+        return (s.position[0] - x0) / 60.0
+
+    assert mean_drift(True) - mean_drift(False) == pytest.approx(u_s, rel=0.2)
+
+
+def test_scenario_keys_for_actuators():
+    sc = parse_scenario({"boats": [{
+        "propulsion": {"steerable": True, "time_constant": 0.5, "at_center_of_mass": False},
+        "rudder": {"model": "hybrid", "max_torque": 500, "base_torque": 100, "max_speed": 5},
+        "keel": {"model": "reflection", "rate": 0.5}, "stokes_drift": True}]})
+    p = sc.boats[0].params
+    assert p.propulsion.steerable and p.propulsion.time_constant == 0.5
+    assert p.rudder.model == "hybrid" and p.keel_rate == 0.5 and p.stokes_drift
+    with pytest.raises(ScenarioError, match=r"boats\[0\].rudder.max_torque: None"):
+        parse_scenario({"boats": [{"rudder": {"model": "torque"}}]})
+    with pytest.raises(ScenarioError, match=r"boats\[0\].propulsion.steerable: 'yes'"):
+        parse_scenario({"boats": [{"propulsion": {"steerable": "yes"}}]})
+
+
+def test_notes_velocity_decay_is_v_over_1_plus_c_dt_per_step():
+    from dataclasses import replace
+
+    from boat_dynamics.physics.scenario import parse_scenario
+
+    sc = parse_scenario({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6,
+                                                "decay": [0.4, 0, 0, 0, 0, 0.8]}}]})
+    params, rest = sc.boats[0].params, sc.boats[0].initial
+    # separately: a yaw rate turns a body-frame surge velocity (w x v)
+    gliding = replace(rest, velocity=np.array([2.0, 0.0, 0.0]))
+    spinning = replace(rest, angular_velocity=np.array([0.0, 0.0, 0.3]))
+    dt, n = 0.01, 300
+    for _ in range(n):
+        gliding = step(params, gliding, BoatInputs(0.0, 0.0), WaveField(), dt)
+        spinning = step(params, spinning, BoatInputs(0.0, 0.0), WaveField(), dt)
+    assert gliding.velocity[0] == pytest.approx(2.0 / (1 + 0.4 * dt) ** n, rel=1e-9)
+    assert spinning.angular_velocity[2] == pytest.approx(0.3 / (1 + 0.8 * dt) ** n, rel=1e-9)
+    # off by default, and refused when negative
+    assert np.all(parse_scenario({}).boats[0].params.damping_decay == 0.0)
+    from boat_dynamics.physics.scenario import ScenarioError
+
+    with pytest.raises(ScenarioError, match=r"damping\.decay"):
+        parse_scenario({"boats": [{"damping": {"decay": [0, 0, 0, 0, 0, -1]}}]})

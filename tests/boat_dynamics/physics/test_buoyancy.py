@@ -1,0 +1,94 @@
+"""Sample-point buoyancy options of the seed notes."""
+
+import math
+
+import numpy as np
+import pytest
+
+from boat_dynamics.physics.boat import BoatInputs, initial_state, reference_pose, step
+from boat_dynamics.physics.buoyancy import SamplePointBuoyancy, sample_point_buoyancy
+from boat_dynamics.physics.hull import BoxHull
+from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+from ocean_sim.physics.waves import WaveField
+
+RHO, G = 1025.0, 9.81
+POINTS = BoxHull(4.0, 2.0, 1.0).bottom_grid(2, 2)
+COM = np.zeros(3)
+EYE = np.eye(3)
+
+
+def model(**kw):
+    return SamplePointBuoyancy(points=POINTS, volume=8.0, max_depth=1.0, **kw)
+
+
+def total_up(m, depths, **kw):
+    return sample_point_buoyancy(m, np.asarray(depths, float), EYE, COM, RHO, G, **kw).force
+
+
+def test_linear_curve_is_archimedes_and_clamps_at_full_depth():
+    full = RHO * G * 8.0
+    assert total_up(model(), [0.5] * 4)[2] == pytest.approx(0.5 * full)
+    assert total_up(model(), [7.0] * 4)[2] == pytest.approx(full)  # depth clamp
+    assert total_up(model(), [-1.0] * 4)[2] == 0.0
+
+
+def test_exponential_curve_saturates():
+    m = model(curve="exponential", alpha=3.0)
+    full = RHO * G * 8.0
+    assert total_up(m, [1.0] * 4)[2] == pytest.approx(full)
+    half = total_up(m, [0.5] * 4)[2] / full
+    assert half == pytest.approx((1 - math.exp(-1.5)) / (1 - math.exp(-3.0)))
+    assert half > 0.5  # more than linear near the surface, bounded at depth
+
+
+def test_force_along_the_surface_normal():
+    n = np.array([math.sin(0.3), 0.0, math.cos(0.3)])
+    f = total_up(model(direction="normal"), [0.5] * 4, normals=np.tile(n, (4, 1)))
+    assert f / np.linalg.norm(f) == pytest.approx(n)
+    assert np.linalg.norm(f) == pytest.approx(0.5 * RHO * G * 8.0)
+
+
+def test_depth_scale_and_force_clamp():
+    base = total_up(model(), [0.25] * 4)[2]
+    assert total_up(model(depth_scale=True), [0.25] * 4)[2] == pytest.approx(0.25 * base)
+    clamped = total_up(model(force_clamp=0.5), [0.9] * 4)[2]
+    assert clamped == pytest.approx(0.5 * RHO * G * 8.0)
+
+
+def test_point_damping_is_proportional_to_mass_and_opposes_motion():
+    v = np.tile([0.0, 0.0, 2.0], (4, 1))
+    light = total_up(model(point_damping=1.5), [0.5] * 4, point_velocities=v, mass=1000.0)
+    heavy = total_up(model(point_damping=1.5), [0.5] * 4, point_velocities=v, mass=2000.0)
+    archimedes = 0.5 * RHO * G * 8.0
+    assert archimedes - light[2] == pytest.approx(1.5 * 1000.0 * 2.0)
+    assert archimedes - heavy[2] == pytest.approx(2 * (archimedes - light[2]))
+    dry = total_up(model(point_damping=1.5), [-0.5] * 4, point_velocities=v, mass=1000.0)
+    assert dry[2] == 0.0  # only submerged points damp
+
+
+def test_boat_layout_floats_at_the_archimedes_draft():
+    sc = parse_scenario({"boats": [{"mass": 2460.0, "buoyancy": {"model": "sample_points",
+                                                                 "layout": "boat"}}]})
+    p = sc.boats[0].params
+    pts = p.buoyancy.points
+    assert pts.shape == (7, 3)
+    assert sorted(pts[:, 1].round(9)) == sorted((-pts[:, 1]).round(9))  # symmetric
+    s = initial_state(p, [0.0, 0.0, 0.3])
+    for _ in range(3000):
+        s = step(p, s, BoatInputs(), WaveField(), 0.01)
+    draft = 0.5 - reference_pose(p, s)[0][2]
+    assert draft == pytest.approx(2460.0 / (1025.0 * 8.0), abs=1e-3)
+
+
+def test_custom_points_and_refusals():
+    pts = [[1.5, 0.8, -0.5], [1.5, -0.8, -0.5], [-1.5, 0.8, -0.5], [-1.5, -0.8, -0.5]]
+    sc = parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "layout": "custom",
+                                                 "points": pts, "curve": "exponential"}}]})
+    assert sc.boats[0].params.buoyancy.points.tolist() == pts
+    with pytest.raises(ScenarioError, match=r"buoyancy.points"):
+        parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "layout": "custom",
+                                                "points": [[1, 2]]}}]})
+    with pytest.raises(ScenarioError, match=r"buoyancy.curve: 'cubic'"):
+        parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "curve": "cubic"}}]})
+    with pytest.raises(ScenarioError, match=r"buoyancy.layout: 'boat' .*only for model"):
+        parse_scenario({"boats": [{"buoyancy": {"layout": "boat"}}]})

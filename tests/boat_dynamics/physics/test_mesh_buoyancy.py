@@ -1,0 +1,161 @@
+"""Mesh (surfacic) buoyancy against hydrostatics closed forms: a box hull."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from boat_dynamics.physics.boat import (
+    BoatInputs,
+    evaluate_forces,
+    initial_state,
+    reference_pose,
+    step,
+)
+from boat_dynamics.physics.mesh_buoyancy import clip_submerged, hydrostatics
+from boat_dynamics.physics.rigid_body import quat_from_euler, quat_to_euler, rotation_matrix
+from ocean_sim.physics.waves import WaveField
+
+FLAT = WaveField()
+L, B, H = 4.0, 2.0, 1.0
+
+
+def box_theory(ratio, com_z):
+    d = ratio * H
+    kb, bm, kg = d / 2, B**2 / (12 * d), H / 2 + com_z
+    return d, kb, bm, kg, kb + bm - kg
+
+
+def heeled(params, ratio, heel):
+    """State heeled by ``heel`` about the waterplane centre line (wall-sided: same volume)."""
+    q = quat_from_euler(heel, 0.0, 0.0)
+    waterline_centre = np.array([0.0, 0.0, -H / 2 + ratio * H])
+    ref = -rotation_matrix(q) @ waterline_centre
+    return initial_state(params, ref, roll=heel)
+
+
+# (draft ratio, heel): the wall-sided range, where neither deck edge nor bilge leaves its side
+WALL_SIDED = [(r, h) for r in (0.3, 0.5, 0.7) for h in (0.0, 2.0, 5.0, 10.0, 15.0, 20.0)
+              if B / 2 * math.tan(math.radians(h)) <= min(r, 1 - r) * H]
+
+
+@pytest.mark.parametrize(("ratio", "heel_deg"), WALL_SIDED)
+def test_righting_arm_matches_the_wall_sided_formula(boat_factory, ratio, heel_deg):
+    com_z = -0.2
+    params = boat_factory(density_ratio=ratio, com=(0, 0, com_z), model="mesh")
+    _, _, bm, _, gm = box_theory(ratio, com_z)
+    heel = math.radians(heel_deg)
+    forces = evaluate_forces(params, heeled(params, ratio, heel), BoatInputs(), FLAT)
+    weight = params.mass * params.gravity
+    # the world vertical force is the weight: the heel did not change the displacement
+    rot = rotation_matrix(quat_from_euler(heel, 0, 0))
+    assert (rot @ forces.buoyancy.force)[2] == pytest.approx(weight, rel=1e-12)
+    gz = -forces.buoyancy.torque[0] / weight
+    expected = math.sin(heel) * (gm + 0.5 * bm * math.tan(heel) ** 2)
+    assert gz == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
+def test_hydrostatics_of_the_upright_box(boat_factory):
+    ratio, com_z = 0.4, -0.1
+    params = boat_factory(density_ratio=ratio, com=(0, 0, com_z), model="mesh", subdivisions=2)
+    d, *_, gm = box_theory(ratio, com_z)
+    state = initial_state(params, [0.0, 0.0, H / 2 - d])
+    rot = rotation_matrix(state.orientation)
+    ref, _ = reference_pose(params, state)
+    verts = ref + params.buoyancy.mesh.vertices @ rot.T
+    hs = hydrostatics(params.buoyancy, verts, -verts[:, 2], rot, state.position)
+    assert hs.submerged_volume == pytest.approx(L * B * d, rel=1e-12)
+    assert hs.center_of_buoyancy == pytest.approx([0.0, 0.0, -d / 2], abs=1e-12)
+    assert hs.waterplane_area == pytest.approx(L * B, rel=1e-12)
+    assert hs.metacentric_height == pytest.approx(gm, rel=1e-12)
+    assert hs.draft == pytest.approx(d, rel=1e-12)
+
+
+def test_roll_period_from_metacentric_height(boat_factory):
+    ratio, com_z = 0.5, -0.2
+    params = boat_factory(density_ratio=ratio, com=(0, 0, com_z), model="mesh")
+    *_, gm = box_theory(ratio, com_z)
+    expected = 2 * math.pi * math.sqrt(params.inertia[0] / (params.mass * params.gravity * gm))
+    state = heeled(params, ratio, math.radians(3.0))
+    dt = 0.001
+    rolls = []
+    for _ in range(round(4 * expected / dt)):
+        state = step(params, state, BoatInputs(), FLAT, dt)
+        rolls.append(quat_to_euler(state.orientation)[0])
+    rolls = np.array(rolls)
+    down = np.flatnonzero((rolls[:-1] > 0) & (rolls[1:] <= 0))
+    crossings = (down + rolls[down] / (rolls[down] - rolls[down + 1])) * dt
+    assert len(crossings) >= 3
+    assert np.diff(crossings).mean() == pytest.approx(expected, rel=0.02)
+
+
+def test_clipping_keeps_the_submerged_part_exactly():
+    # a vertical square face 2 m x 2 m, half under water: pressure resultant at 2/3 depth
+    corners = np.array([[[0, 0, -1.0], [0, 2, -1.0], [0, 2, 1.0]],
+                        [[0, 0, -1.0], [0, 2, 1.0], [0, 0, 1.0]]])
+    normals = np.array([[-1.0, 0, 0], [-1.0, 0, 0]])
+    p, d, _ = clip_submerged(corners, -corners[:, :, 2], normals)
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    assert area.sum() == pytest.approx(2.0)
+    integral_d = (area * d.sum(axis=1) / 3).sum()
+    assert integral_d == pytest.approx(2.0 * 1.0**2 / 2)  # width * depth^2 / 2
+    moment_z = (area / 12 * (p[:, :, 2].sum(1) * d.sum(1) + (p[:, :, 2] * d).sum(1))).sum()
+    assert moment_z / integral_d == pytest.approx(-2.0 / 3.0)  # centre of pressure at 2/3 depth
+    assert np.all(p[:, :, 2] <= 1e-15)
+
+
+def test_fully_submerged_box_gets_the_whole_volume(boat_factory):
+    params = boat_factory(density_ratio=0.5, model="mesh", subdivisions=2)
+    deep = initial_state(params, [0.0, 0.0, -5.0], roll=0.3, pitch=-0.2, yaw=1.0)
+    forces = evaluate_forces(params, deep, BoatInputs(), FLAT)
+    rot = rotation_matrix(deep.orientation)
+    world = rot @ forces.buoyancy.force
+    assert world == pytest.approx([0, 0, params.water_density * params.gravity * L * B * H],
+                                  rel=1e-12, abs=1e-6)
+    # centre of buoyancy = centroid: no torque about the box centre
+    assert np.abs(forces.buoyancy.torque).max() < 1e-6 * params.mass
+
+
+def test_out_of_the_water_no_force(boat_factory):
+    params = boat_factory(model="mesh")
+    forces = evaluate_forces(params, initial_state(params, [0, 0, 5.0]), BoatInputs(), FLAT)
+    assert np.all(forces.buoyancy.force == 0.0) and np.all(forces.buoyancy.torque == 0.0)
+
+
+@settings(max_examples=300, deadline=None)
+@given(corners=arrays(np.float64, (4, 3, 3), elements=st.floats(-3, 3)),
+       depths=arrays(np.float64, (4, 3), elements=st.floats(-2, 2)))
+def test_wet_and_dry_parts_tile_each_triangle(corners, depths):
+    # the parts under water (d > 0) and above it (-d > 0) make up the whole triangle: their
+    # vector areas add up to the triangle's, and so do their integrals of d (d linear). A
+    # triangle lying in the surface (d = 0 at every corner) is on neither side.
+    from boat_dynamics.physics.mesh_buoyancy import clip_parts
+
+    depths = depths.copy()
+    depths[np.all(depths == 0.0, axis=1), 0] = 1.0
+
+    def vector_area(p):
+        return 0.5 * np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+
+    def clip(d):  # clip_parts takes and gives coordinate-major arrays
+        xyz, part_depths, source = clip_parts(np.ascontiguousarray(corners.transpose(2, 1, 0)),
+                                              np.ascontiguousarray(d.T))
+        return xyz.transpose(2, 1, 0), part_depths.T, source
+
+    whole = vector_area(corners)
+    integral_whole = whole * (depths.sum(axis=1) / 3)[:, None]
+    wet, d_wet, f_wet = clip(depths)
+    dry, d_dry, f_dry = clip(-depths)
+    area = np.zeros((4, 3))
+    integral = np.zeros((4, 3))
+    np.add.at(area, f_wet, vector_area(wet))
+    np.add.at(area, f_dry, vector_area(dry))
+    np.add.at(integral, f_wet, vector_area(wet) * (d_wet.sum(axis=1) / 3)[:, None])
+    np.add.at(integral, f_dry, -vector_area(dry) * (d_dry.sum(axis=1) / 3)[:, None])
+    scale = 1.0 + np.abs(whole).max()
+    np.testing.assert_allclose(area, whole, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(integral, integral_whole, rtol=0, atol=1e-9 * scale)
+    assert np.all(d_wet >= 0.0) and np.all(d_dry >= 0.0)  # each part on its side

@@ -1,0 +1,208 @@
+"""The pipeline: stepping boats together is stepping each alone (one implementation, batched);
+the surface contact is a value a step takes and returns, never a cache."""
+
+from dataclasses import FrozenInstanceError, replace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from boat_dynamics.physics import pipeline
+from boat_dynamics.physics.boat import BoatInputs, step
+from boat_dynamics.physics.contact import contact
+from boat_dynamics.physics.scenario import parse_scenario
+from boat_dynamics.physics.system import FleetInputs, FleetState, System
+from ocean_sim.physics.waves import WaveComponent, WaveField
+
+SEA = WaveField((WaveComponent(0.4, 20.0, 0.5, 0.8, 0.1), WaveComponent(0.2, 7.0, -1.0, 0.6, 2.0),
+                 WaveComponent(0.05, 3.0, 2.0, 0.5, 1.0)))
+DT = 0.01
+
+#: Boats that take different code paths, and some that share one with different numbers.
+BOATS = [
+    {},
+    {"mass": 2500.0, "hull": {"type": "box", "length": 5.0, "beam": 2.2, "height": 1.1}},
+    {"hull": {"type": "box", "subdivisions": 2}, "buoyancy": {"drag": {"viscous": True,
+                                                                       "pressure": True}}},
+    {"buoyancy": {"model": "sample_points", "layout": "boat", "point_damping": 0.5,
+                  "direction": "normal"}},
+    {"buoyancy": {"model": "sample_points", "layout": "grid", "curve": "exponential",
+                  "force_clamp": 0.8, "depth_scale": True},
+     "propulsion": {"at_center_of_mass": True, "time_constant": 0.5},
+     "rudder": {"model": "torque", "max_torque": 500}},
+    {"propulsion": {"steerable": True}, "rudder": {"model": "none"}, "min_wavelength": 5.0},
+    {"stokes_drift": True, "keel": {"model": "reflection", "rate": 0.5},
+     "rudder": {"model": "hybrid", "max_torque": 1000, "base_torque": 200, "max_speed": 5}},
+    {"control_mode": "kinematic", "control": {"attitude": "pd"}},
+    {"control_mode": "constrained"},
+    {"control_mode": "blend"},
+    {"inertia": [3000, 9000, 10000], "inertia_products": [0, 800, 0]},
+]
+
+
+def fleet_scenario(boats=BOATS):
+    # float64 queries: float32 results depend on the batch (its phase-reduction centre) at the
+    # 1e-7 m level, which would hide a real difference between the fleet and lone boats
+    return parse_scenario({"simulation": {"wave_precision": "float64"},
+                           "boats": [dict(b, name=f"b{i}", initial_pose={
+        "position": [9.0 * i, 3.0 * (i % 3), 0.0], "yaw_deg": 20.0 * i})
+        for i, b in enumerate(boats)]})
+
+
+def commands(n):
+    return [BoatInputs(1.0 - 0.15 * i, 0.3 * np.sin(i)) for i in range(n)]
+
+
+def test_a_mixed_fleet_stepped_together_equals_each_boat_alone():
+    sc = fleet_scenario()
+    params = [b.params for b in sc.boats]
+    inputs = commands(len(params))
+    fleet = System.build(params)
+    # boats 0, 1 and 7-10 share a code path (control modes apply after the step); 2-6 do not
+    assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9, 10], [2], [3],
+                                                               [4], [5], [6]]
+    state = FleetState.stack([b.initial for b in sc.boats])
+    alone = [b.initial for b in sc.boats]
+    for _ in range(200):
+        done = pipeline.step(fleet, state, FleetInputs.stack(inputs), SEA, DT)
+        state, forces = done.state, done.forces
+        alone = [step(p, s, u, SEA, DT) for p, s, u in zip(params, alone, inputs, strict=True)]
+    for i, a in enumerate(alone):
+        b = state.boat(i)
+        assert b.t == pytest.approx(a.t, abs=1e-12)
+        np.testing.assert_allclose(b.position, a.position, rtol=0, atol=1e-9, err_msg=f"b{i}")
+        np.testing.assert_allclose(b.velocity, a.velocity, rtol=0, atol=1e-9, err_msg=f"b{i}")
+        np.testing.assert_allclose(b.orientation, a.orientation, rtol=0, atol=1e-12)
+        assert b.throttle == pytest.approx(a.throttle, abs=1e-15)
+    assert np.all(np.isfinite(forces.total.force))
+    # the boats really moved differently: the comparison is not between copies
+    assert np.ptp(state.velocity[:, 0]) > 0.5
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.permutations(range(6)))
+def test_the_order_of_the_boats_does_not_matter(order):
+    sc = fleet_scenario(BOATS[:6])
+    params = [b.params for b in sc.boats]
+    inputs = commands(6)
+    ref = FleetState.stack([b.initial for b in sc.boats])
+    perm = FleetState.stack([sc.boats[i].initial for i in order])
+    fleet_ref, fleet_perm = System.build(params), System.build([params[i] for i in order])
+    for _ in range(50):
+        ref = pipeline.step(fleet_ref, ref, FleetInputs.stack(inputs), SEA, DT).state
+        perm = pipeline.step(fleet_perm, perm, FleetInputs.stack([inputs[i] for i in order]),
+                             SEA, DT).state
+    np.testing.assert_allclose(perm.position, ref.position[list(order)], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(perm.velocity, ref.velocity[list(order)], rtol=0, atol=1e-9)
+
+
+def test_contact_holds_the_depths_of_each_boats_points():
+    from boat_dynamics.physics.boat import reference_pose
+    from boat_dynamics.physics.rigid_body import rotation_matrix
+
+    sc = fleet_scenario(BOATS[:5])
+    fleet = System.build([b.params for b in sc.boats])
+    state = FleetState.stack([b.initial for b in sc.boats])
+    seen = 0
+    for c in contact(fleet, state, WaveField()).groups:  # flat: depth = -z
+        g, world, depths = c.group, c.world, c.depths
+        for k, i in enumerate(g.index):
+            boat = sc.boats[i]
+            model = boat.params.buoyancy
+            body = model.mesh.vertices if hasattr(model, "mesh") else model.points
+            ref, q = reference_pose(boat.params, boat.initial)
+            expected = ref + body @ rotation_matrix(q).T
+            np.testing.assert_allclose(world[g.owner == k], expected, atol=1e-12)
+            np.testing.assert_allclose(depths[g.owner == k], -expected[:, 2], atol=1e-12)
+            seen += 1
+    assert seen == 5
+
+
+def test_a_fleet_steps_boats_at_one_time():
+    sc = fleet_scenario(BOATS[:2])
+    a, b = sc.boats[0].initial, sc.boats[1].initial
+    from dataclasses import replace
+
+    with pytest.raises(ValueError, match="one time"):
+        FleetState.stack([a, replace(b, t=1.0)])
+
+
+def test_float32_surface_queries_stay_within_a_tenth_of_a_millimetre_of_float64():
+    from dataclasses import replace
+
+    sc = fleet_scenario(BOATS[:4])
+    p32 = [replace(b.params, wave_precision="float32") for b in sc.boats]
+    p64 = [replace(b.params, wave_precision="float64") for b in sc.boats]
+    s32 = s64 = FleetState.stack([b.initial for b in sc.boats])
+    u = FleetInputs.stack(commands(4))
+    f32, f64 = System.build(p32), System.build(p64)
+    for _ in range(500):  # 5 s on a steep sea
+        a, b = pipeline.step(f32, s32, u, SEA, DT), pipeline.step(f64, s64, u, SEA, DT)
+        s32, forces32, s64, forces64 = a.state, a.forces, b.state, b.forces
+    assert np.abs(s32.position - s64.position).max() < 1e-4
+    assert np.abs(s32.position - s64.position).max() > 0.0  # the two paths really differ
+    weight = np.array([p.mass * p.gravity for p in p64])
+    buoyancy_error = np.abs(forces32.buoyancy.force - forces64.buoyancy.force).max(axis=1)
+    assert np.all(buoyancy_error < 1e-4 * weight)
+
+
+def _two_boats():
+    sc = fleet_scenario(BOATS[:4])
+    system = System.build([b.params for b in sc.boats])
+    return system, FleetState.stack([b.initial for b in sc.boats]), FleetInputs.stack(commands(4))
+
+
+def test_a_step_hands_back_the_contact_its_forces_came_from():
+    system, state, u = _two_boats()
+    done = pipeline.step(system, state, u, SEA, DT)
+    assert done.contact.t == state.t and done.contact.position is state.position
+    again, _ = pipeline.forces(system, replace(state, throttle=done.state.throttle), u,
+                               contact(system, state, SEA))
+    assert np.array_equal(again.total.force, done.forces.total.force)
+
+
+def test_a_given_contact_gives_the_same_step_bit_for_bit():
+    system, state, u = _two_boats()
+    after = pipeline.step(system, state, u, SEA, DT).state
+    known = contact(system, after, SEA)  # as /diagnostics computes it for the new state
+    reusing = pipeline.step(system, after, u, SEA, DT, known)
+    fresh = pipeline.step(system, after, u, SEA, DT)
+    assert reusing.contact is known
+    for name in ("position", "orientation", "velocity", "angular_velocity"):
+        assert np.array_equal(getattr(reusing.state, name), getattr(fresh.state, name)), name
+
+
+def test_a_contact_of_another_state_sea_or_system_is_refused():
+    system, state, u = _two_boats()
+    after = pipeline.step(system, state, u, SEA, DT).state
+    stale = contact(system, state, SEA)
+    with pytest.raises(ValueError, match="another system, state or sea"):
+        pipeline.step(system, after, u, SEA, DT, stale)
+    with pytest.raises(ValueError, match="another system, state or sea"):
+        pipeline.step(system, state, u, WaveField(), DT, stale)
+    other = System.build(system.params)
+    with pytest.raises(ValueError, match="another system, state or sea"):
+        pipeline.step(other, state, u, SEA, DT, stale)
+
+
+def test_stepping_changes_nothing_it_is_given():
+    system, state, u = _two_boats()
+    copies = {k: getattr(state, k).copy() for k in ("position", "orientation", "velocity")}
+    first = pipeline.step(system, state, u, SEA, DT)
+    second = pipeline.step(system, state, u, SEA, DT)
+    for k, v in copies.items():
+        assert np.array_equal(getattr(state, k), v), k
+    assert np.array_equal(first.state.position, second.state.position)
+    with pytest.raises(FrozenInstanceError):
+        system.mass = None
+
+
+def test_init_is_exactly_zero_velocity_in_still_water_and_moves_with_waves():
+    system, state, _ = _two_boats()
+    still = pipeline.init(system, state, WaveField())
+    assert np.array_equal(still.velocity, np.zeros_like(state.velocity))
+    assert not np.signbit(still.velocity).any()
+    moving = pipeline.init(system, state, SEA)
+    assert np.abs(moving.velocity).max() > 0.05
+    assert moving.position is state.position  # only the velocity is set

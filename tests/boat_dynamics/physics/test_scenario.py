@@ -1,0 +1,146 @@
+"""Scenario parsing: the shipped files load; every refusal names key, value and what is allowed."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+from boat_dynamics.physics.boat import reference_pose
+from boat_dynamics.physics.scenario import ScenarioError, load_scenario, parse_scenario
+
+SCENARIOS = sorted((Path(__file__).resolve().parents[3] / "scenarios").glob("*.yaml"))
+
+
+@pytest.mark.parametrize("path", SCENARIOS, ids=[p.name for p in SCENARIOS])
+def test_shipped_scenarios_load(path):
+    sc = load_scenario(path)
+    assert sc.boats
+
+
+def test_default_scenario_is_one_root_boat_on_a_moderate_sea():
+    sc = load_scenario(SCENARIOS[[p.name for p in SCENARIOS].index("default.yaml")])
+    assert [b.name for b in sc.boats] == [""]
+    assert 0.0 < sc.sea.steepness_sum < 0.5
+    assert sc.simulation.rate_hz == 100 and sc.simulation.publish_rate_hz == 50
+    pos, _ = reference_pose(sc.boats[0].params, sc.boats[0].initial)
+    assert pos.tolist() == [0.0, 0.0, 0.0]
+
+
+def test_empty_scenario_is_one_boat_on_a_flat_sea():
+    sc = parse_scenario({})
+    assert len(sc.boats) == 1 and sc.sea.is_flat
+    assert sc.boats[0].params.mass == pytest.approx(0.5 * 1025 * 8.0)
+
+
+def test_density_derives_mass():
+    sc = parse_scenario({"boats": [{"density": 300.0}]})
+    assert sc.boats[0].params.mass == pytest.approx(300.0 * 8.0)
+
+
+@pytest.mark.parametrize(
+    ("data", "key", "fragment"),
+    [
+        ({"simulation": {"rate_hz": 0}}, "simulation.rate_hz", "[1, 10000]"),
+        ({"simulation": {"rate_hz": 100, "publish_rate_hz": 200}},
+         "simulation.publish_rate_hz", "(0, 100]"),
+        ({"simulation": {"realtime": "yes"}}, "simulation.realtime", "true or false"),
+        ({"simulation": {"frobnicate": 1}}, "simulation.frobnicate", "unknown key"),
+        ({"ocean": {"components": [{"amplitude": 0.1, "wavelength": -3}]}},
+         "ocean.components[0].wavelength", "(0, inf]"),
+        ({"ocean": {"components": [{"amplitude": 3.0, "wavelength": 10, "steepness": 1}]}},
+         "ocean.components", "crests loop"),
+        ({"ocean": {"depth": -2}}, "ocean.depth", "(0, inf]"),
+        ({"boats": [{"mass": -5}]}, "boats[0].mass", "(0, inf]"),
+        ({"boats": [{"mass": "heavy"}]}, "boats[0].mass", "number"),
+        ({"boats": [{"mass": 1000, "density": 500}]}, "boats[0].density", "not both"),
+        ({"boats": [{"hull": {"length": math.nan}}]}, "boats[0].hull.length", "finite"),
+        ({"boats": [{"hull": {"type": "mesh"}}]}, "boats[0].hull.path", "STL or OBJ"),
+        ({"boats": [{"hull": {"type": "mesh", "path": "nowhere.stl"}}]}, "boats[0].hull.path",
+         "cannot read"),
+        ({"boats": [{"hull": {"type": "box", "subdivisions": 0}}]},
+         "boats[0].hull.subdivisions", "[1, 64]"),
+        ({"boats": [{"buoyancy": {"model": "mesh", "grid": [2, 2]}}]}, "boats[0].buoyancy.grid",
+         "only for model sample_points"),
+        ({"boats": [{"center_of_mass": [0, 0]}]}, "boats[0].center_of_mass", "3 numbers"),
+        ({"boats": [{"rudder": {"model": "banana"}}]}, "boats[0].rudder.model",
+         "one of: lift"),
+        ({"boats": [{"name": "a"}, {"name": "a"}]}, "boats[1].name", "unique"),
+        ({"boats": [{"name": "a"}, {}]}, "boats[1].name", "needs a name"),
+        ({"boats": [{"name": "my boat"}]}, "boats[0].name", "ROS name"),
+        ({"boats": [{"commands": [{"t": 5, "thrust": 1}, {"t": 2, "thrust": 0}]}]},
+         "boats[0].commands[1].t", "later than"),
+        ({"boats": [{"commands": [{"t": 0, "thrust": 2}]}]}, "boats[0].commands[0].thrust",
+         "[-1, 1]"),
+        ({"boats": []}, "boats", "non-empty"),
+        ({"ocean": {"spectrum": {"type": "bretschneider"}}}, "ocean.spectrum.type",
+         "jonswap, pierson_moskowitz"),
+        ({"ocean": {"spectrum": {"significant_height": -1}}}, "ocean.spectrum.significant_height",
+         "[0, 30] m"),
+        ({"ocean": {"spectrum": {"beaufort": 13}}}, "ocean.spectrum.beaufort", "[0, 12]"),
+        ({"ocean": {"spectrum": {"beaufort": 5, "peak_period": 7}}},
+         "ocean.spectrum.peak_period", "either beaufort"),
+        ({"ocean": {"spectrum": {"components": 0}}}, "ocean.spectrum.components", "[1, 1000]"),
+        ({"ocean": {"spectrum": {"steepness": 1.0, "significant_height": 2.0},
+                    "components": [{"amplitude": 1.0, "wavelength": 8.0, "steepness": 1.0}]}},
+         "ocean", "components and spectrum together"),
+        ({"boats": [{"min_wavelength": -1}]}, "boats[0].min_wavelength", "[0, 10000] m"),
+    ],
+)
+def test_refusals_name_key_value_and_allowed(data, key, fragment):
+    with pytest.raises(ScenarioError) as info:
+        parse_scenario(data)
+    assert info.value.key == key
+    assert str(info.value).startswith(f"{key}: ")
+    assert fragment in info.value.allowed
+
+
+def test_bad_yaml_and_missing_file(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("boats: [\n  {mass: 3\n")
+    with pytest.raises(ScenarioError, match="valid YAML"):
+        load_scenario(bad)
+    with pytest.raises(ScenarioError, match="readable file"):
+        load_scenario(tmp_path / "missing.yaml")
+
+
+def test_spectrum_and_components_combine_and_the_seed_sets_the_phases():
+    data = {"simulation": {"seed": 3},
+            "ocean": {"depth": 30.0,
+                      "components": [{"amplitude": 0.2, "wavelength": 40.0}],
+                      "spectrum": {"type": "jonswap", "significant_height": 1.5,
+                                   "peak_period": 7.0, "direction_deg": 90, "components": 12}}}
+    a, b = parse_scenario(data), parse_scenario(data)
+    assert len(a.sea.components) == 13 and a.sea.depth == 30.0
+    assert a.sea == b.sea
+    data["simulation"]["seed"] = 4
+    c = parse_scenario(data)
+    assert [x.phase for x in c.sea.components[1:]] != [x.phase for x in a.sea.components[1:]]
+
+
+def test_beaufort_preset():
+    sc = parse_scenario({"ocean": {"spectrum": {"beaufort": 6, "components": 32}}})
+    a = sc.sea.arrays.a
+    assert 4 * math.sqrt(float((a**2).sum()) / 2) == pytest.approx(3.0, rel=0.05)
+
+
+def test_min_wavelength_reaches_the_boat():
+    sc = parse_scenario({"boats": [{"min_wavelength": 5.0}]})
+    assert sc.boats[0].params.min_wavelength == 5.0
+
+
+def test_inertia_products_from_the_hull_or_the_scenario_and_refused_when_impossible():
+    sc = parse_scenario({"boats": [{"name": "a"}, {"name": "b", "inertia": [1000, 4000, 4500],
+                                                    "inertia_products": [0, 300, 0]}]})
+    assert sc.boats[0].params.inertia_products.tolist() == [0.0, 0.0, 0.0]  # box: principal
+    assert sc.boats[1].params.inertia_products.tolist() == [0.0, 300.0, 0.0]
+    with pytest.raises(ScenarioError, match=r"boats\[0\]\.inertia_products.*positive definite"):
+        parse_scenario({"boats": [{"inertia": [1000, 4000, 4500],
+                                   "inertia_products": [0, 3000, 0]}]})
+
+
+def test_wave_precision_reaches_every_boat_and_is_checked():
+    assert parse_scenario({}).boats[0].params.wave_precision == "float32"
+    sc = parse_scenario({"simulation": {"wave_precision": "float64"}})
+    assert sc.simulation.wave_precision == sc.boats[0].params.wave_precision == "float64"
+    with pytest.raises(ScenarioError, match=r"simulation\.wave_precision: 'float16'.*float32"):
+        parse_scenario({"simulation": {"wave_precision": "float16"}})
