@@ -37,6 +37,17 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="boatsim", description="ROS 2 simulation of boats on Gerstner waves.")
     verbs = parser.add_subparsers(dest="verb", metavar="VERB", required=True)
+    _add_run(verbs)
+    _add_query(verbs)
+    _add_bag_verbs(verbs)
+    teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
+    teleop.add_argument("--ns", default="", metavar="NAME",
+                        help="the boat's namespace (default: the root namespace)")
+    return parser
+
+
+def _add_run(verbs) -> None:
+    """``run``, and the internal ``_node`` of its ``--processes`` children."""
     run = verbs.add_parser("run", help="start the ocean and dynamics nodes for a scenario",
                            description="Start the ocean node and the dynamics node for every "
                                        "boat of SCENARIO in one process.")
@@ -63,6 +74,10 @@ def _parser() -> argparse.ArgumentParser:
     node.add_argument("--epoch", type=float, required=True)
     node.add_argument("--duration", type=_positive_seconds)
     node.add_argument("--quiet", action="store_true")
+
+
+def _add_query(verbs) -> None:
+    """``query``: the ocean's surface at points."""
     query = verbs.add_parser(
         "query", help="ask the running ocean for the surface at points",
         description="Print height, normal and water velocity at world points (x, y) from "
@@ -73,6 +88,10 @@ def _parser() -> argparse.ArgumentParser:
                        help="simulation time to sample at, s (default: the ocean's now)")
     query.add_argument("--timeout", type=_positive_seconds, default=5.0, metavar="S",
                        help="seconds to wait for the ocean (default 5)")
+
+
+def _add_bag_verbs(verbs) -> None:
+    """``record``, ``compare``, ``plot`` and ``replay``: the verbs on bags."""
     record = verbs.add_parser("record", help="record topics to a rosbag2 (MCAP) bag",
                               description="Record TOPICs (default: every topic, new ones as "
                                           "they appear) until Ctrl-C.")
@@ -103,10 +122,6 @@ def _parser() -> argparse.ArgumentParser:
                         help="speed factor against a real-time simulation (default 1)")
     replay.add_argument("--timeout", type=_positive_seconds, default=30.0, metavar="S",
                         help="seconds to wait for the simulation (default 30)")
-    teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
-    teleop.add_argument("--ns", default="", metavar="NAME",
-                        help="the boat's namespace (default: the root namespace)")
-    return parser
 
 
 def _compare(args: argparse.Namespace) -> int:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.physics.contact import Contact, contact
+from boat_dynamics.physics.contact import Contact, GroupContact, contact
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, hydrostatics_of
 from boat_dynamics.physics.model import BoatParams, BoatState
 from boat_dynamics.physics.system import FleetState, System
@@ -84,46 +84,58 @@ def fleet_reports(system: System, state: FleetState, touching: Contact, substeps
     volumes = np.zeros(system.count)
     values: list[list] = [[] for _ in range(system.count)]
     for c in touching.groups:
-        g, depths = c.group, c.depths
-        i = g.index
-        count = i.shape[0]
-        draft = np.full(count, -np.inf)
-        np.maximum.at(draft, g.owner, depths)
-        if g.mesh is not None:
-            reports = hydrostatics_of(c.wet, c.wet_owner, count, c.rotation, state.position[i],
-                                      draft)
-            for k, hs in zip(i, reports, strict=True):
-                volumes[k] = hs.submerged_volume
-                values[k] = [("buoyancy_model", "mesh"),
-                             ("draft_m", f"{hs.draft:.4f}"),
-                             ("submerged_volume_m3", f"{hs.submerged_volume:.4f}"),
-                             ("waterplane_area_m2", f"{hs.waterplane_area:.4f}"),
-                             ("metacentric_height_m", f"{hs.metacentric_height:.4f}")]
-            continue
-        model = g.points  # numeric fields stacked: (G,) per boat of the group
-        max_depth = model.max_depth[g.owner]
-        fraction = np.clip(depths, 0.0, max_depth) / max_depth
-        mean = (np.bincount(g.owner, weights=fraction, minlength=count)
-                / np.bincount(g.owner, minlength=count))
-        for j, k in enumerate(i):
-            volumes[k] = float(mean[j] * model.volume[j])
-            values[k] = [("buoyancy_model", "sample_points"),
-                         ("draft_m", f"{max(float(draft[j]), 0.0):.4f}"),
-                         ("submerged_volume_m3", f"{volumes[k]:.4f}")]
+        _group_values(c, state, volumes, values)
     out = []
     for k, params in enumerate(system.params):
-        model = params.buoyancy
-        hull_volume = model.mesh.volume if isinstance(model, MeshBuoyancy) else model.volume
         line = (remedies[k] if remedies is not None
                 else "; ".join(active_remedies(params, substeps)))
-        entries = [values[k][0], ("control_mode", params.control.mode), *values[k][1:],
-                   ("remedies", line)]
-        ratio = volumes[k] / hull_volume
-        if ratio >= 0.999:
-            out.append(BoatReport(1, "fully submerged", tuple(entries)))
-        elif ratio <= 0.0:
-            out.append(BoatReport(1, "out of the water", tuple(entries)))
-        else:
-            out.append(BoatReport(0, f"floating, {100 * ratio:.0f} % submerged",
-                                  tuple(entries)))
+        entries = (values[k][0], ("control_mode", params.control.mode), *values[k][1:],
+                   ("remedies", line))
+        out.append(_verdict(volumes[k] / _hull_volume(params), entries))
     return out
+
+
+def _hull_volume(params: BoatParams) -> float:
+    """m^3, the volume the boat's buoyancy model displaces fully submerged."""
+    model = params.buoyancy
+    return model.mesh.volume if isinstance(model, MeshBuoyancy) else model.volume
+
+
+def _verdict(ratio: float, entries: tuple) -> BoatReport:
+    """The report of a boat ``ratio`` (submerged / hull volume) under water."""
+    if ratio >= 0.999:
+        return BoatReport(1, "fully submerged", entries)
+    if ratio <= 0.0:
+        return BoatReport(1, "out of the water", entries)
+    return BoatReport(0, f"floating, {100 * ratio:.0f} % submerged", entries)
+
+
+def _group_values(c: GroupContact, state: FleetState, volumes: np.ndarray,
+                  values: list[list]) -> None:
+    """Fill the submerged volumes (m^3) and report values of one group's boats."""
+    g, depths = c.group, c.depths
+    i = g.index
+    count = i.shape[0]
+    draft = np.full(count, -np.inf)
+    np.maximum.at(draft, g.owner, depths)
+    if g.mesh is not None:
+        reports = hydrostatics_of(c.wet, c.wet_owner, count, c.rotation, state.position[i],
+                                  draft)
+        for k, hs in zip(i, reports, strict=True):
+            volumes[k] = hs.submerged_volume
+            values[k] = [("buoyancy_model", "mesh"),
+                         ("draft_m", f"{hs.draft:.4f}"),
+                         ("submerged_volume_m3", f"{hs.submerged_volume:.4f}"),
+                         ("waterplane_area_m2", f"{hs.waterplane_area:.4f}"),
+                         ("metacentric_height_m", f"{hs.metacentric_height:.4f}")]
+        return
+    model = g.points  # numeric fields stacked: (G,) per boat of the group
+    max_depth = model.max_depth[g.owner]
+    fraction = np.clip(depths, 0.0, max_depth) / max_depth
+    mean = (np.bincount(g.owner, weights=fraction, minlength=count)
+            / np.bincount(g.owner, minlength=count))
+    for j, k in enumerate(i):
+        volumes[k] = float(mean[j] * model.volume[j])
+        values[k] = [("buoyancy_model", "sample_points"),
+                     ("draft_m", f"{max(float(draft[j]), 0.0):.4f}"),
+                     ("submerged_volume_m3", f"{volumes[k]:.4f}")]

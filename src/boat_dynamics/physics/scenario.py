@@ -19,7 +19,7 @@ import yaml
 from boat_dynamics.physics.buoyancy import CURVES, POINT_DIRECTIONS, SamplePointBuoyancy
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.control import ATTITUDES, CONTROL_MODES, ControlSettings
-from boat_dynamics.physics.hull import BoxHull, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.physics.hull_drag import HullDrag
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatParams, BoatState, initial_state
@@ -348,8 +348,44 @@ _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "b
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
           base_dir: Path) -> BoatSpec:
+    """One boat of ``boats``: each block read and checked in turn, in the order of the keys."""
     d = _mapping(raw, key)
     _only(d, key, _BOAT_KEYS)
+    name = _boat_name(d, key, lone)
+    hull, mesh = _hull(_mapping(d.get("hull"), f"{key}.hull"), f"{key}.hull", base_dir)
+    mass, com, inertia, products = _mass_properties(d, key, sim, mesh)
+    buoyancy = _buoyancy(_mapping(d.get("buoyancy"), f"{key}.buoyancy"), f"{key}.buoyancy",
+                         hull, mesh)
+    dk = f"{key}.damping"
+    dd = _mapping(d.get("damping"), dk)
+    linear, quadratic, decay, ratio = _damping(dd, dk)
+    added = _vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0)
+    propulsion = _propulsion(_mapping(d.get("propulsion"), f"{key}.propulsion"),
+                             f"{key}.propulsion", hull)
+    rudder = _rudder(_mapping(d.get("rudder"), f"{key}.rudder"), f"{key}.rudder", hull)
+    keel_rate = _keel_rate(_mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel")
+    control = _control(d, key)
+    ik = f"{key}.initial_pose"
+    idd = _mapping(d.get("initial_pose"), ik)
+    _only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
+    params = BoatParams(
+        hull=hull, mass=mass, center_of_mass=com, inertia=inertia, inertia_products=products,
+        buoyancy=buoyancy,
+        damping_linear=linear, damping_quadratic=quadratic, damping_decay=decay,
+        added_mass=added, propulsion=propulsion, rudder=rudder,
+        water_density=sim.water_density, gravity=sim.gravity,
+        min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
+        wave_precision=sim.wave_precision,
+        keel_rate=keel_rate,
+        stokes_drift=_flag(d, "stokes_drift", key, False),
+    )
+    params = _derived(params, key, control, ratio, "quadratic" not in dd)
+    return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
+                    commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
+
+
+def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
+    """``name``: a ROS name, required unless the boat is alone ("" = root namespace)."""
     name = d.get("name", "" if lone else None)
     if name is None:
         raise ScenarioError(f"{key}.name", None, "every boat of a multi-boat scenario needs a name")
@@ -357,9 +393,11 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
             or (name and name[0].isdigit()):
         raise ScenarioError(f"{key}.name", name,
                             "must be a ROS name: letters, digits and _, not starting with a digit")
+    return name
 
-    hk = f"{key}.hull"
-    hd = _mapping(d.get("hull"), hk)
+
+def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, HullMesh]:
+    """``hull``: a box (``length``, ``beam``, ``height``, ``subdivisions``) or a mesh file."""
     _only(hd, hk, ("type", "length", "beam", "height", "subdivisions", "path", "scale"))
     hull_type = _choice(hd, "type", hk, "box", ("box", "mesh"))
     if hull_type == "box":
@@ -376,24 +414,31 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
                 or not 1 <= subdivisions <= 64):
             raise ScenarioError(f"{hk}.subdivisions", subdivisions,
                                 "must be an integer in [1, 64] (quads per box face edge)")
-        mesh = box_mesh(hull, subdivisions)
-    else:
-        for extra in ("length", "beam", "height", "subdivisions"):
-            if extra in hd:
-                raise ScenarioError(f"{hk}.{extra}", hd[extra],
-                                    "only for hull type box (a mesh has its own size)")
-        path = hd.get("path")
-        if not isinstance(path, str) or not path:
-            raise ScenarioError(f"{hk}.path", path, "must be the path of an STL or OBJ file")
-        full = Path(path) if Path(path).is_absolute() else base_dir / path
-        scale = _number(hd, "scale", hk, 1.0, 0.0, 1e3, low_open=True)
-        try:
-            mesh = load_mesh(str(full), scale)
-        except HullMeshError as exc:
-            raise ScenarioError(f"{hk}.path", path, str(exc)) from exc
-        hull = BoxHull(*(float(e) for e in mesh.extents))
-    volume = mesh.volume
+        return hull, box_mesh(hull, subdivisions)
+    for extra in ("length", "beam", "height", "subdivisions"):
+        if extra in hd:
+            raise ScenarioError(f"{hk}.{extra}", hd[extra],
+                                "only for hull type box (a mesh has its own size)")
+    path = hd.get("path")
+    if not isinstance(path, str) or not path:
+        raise ScenarioError(f"{hk}.path", path, "must be the path of an STL or OBJ file")
+    full = Path(path) if Path(path).is_absolute() else base_dir / path
+    scale = _number(hd, "scale", hk, 1.0, 0.0, 1e3, low_open=True)
+    try:
+        mesh = load_mesh(str(full), scale)
+    except HullMeshError as exc:
+        raise ScenarioError(f"{hk}.path", path, str(exc)) from exc
+    return BoxHull(*(float(e) for e in mesh.extents)), mesh
 
+
+def _mass_properties(d: Mapping[str, Any], key: str, sim: SimulationSettings, mesh: HullMesh
+                     ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    """The mass properties: kg, (3,) m, (3,) kg m^2 and (3,) kg m^2.
+
+    From ``mass`` (or ``density``), ``center_of_mass``, ``inertia`` (times ``inertia_scale``)
+    and ``inertia_products``; the solid hull's where not given.
+    """
+    volume = mesh.volume
     if "mass" in d and "density" in d:
         raise ScenarioError(f"{key}.density", d["density"],
                             "give either mass or density, not both (the other is derived)")
@@ -419,9 +464,12 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         raise ScenarioError(f"{key}.inertia_products", products_raw,
                             "the inertia tensor must be positive definite (products of inertia "
                             "too large for the moments)")
+    return mass, com, inertia, products
 
-    bk = f"{key}.buoyancy"
-    bd = _mapping(d.get("buoyancy"), bk)
+
+def _buoyancy(bd: Mapping[str, Any], bk: str, hull: BoxHull, mesh: HullMesh
+              ) -> MeshBuoyancy | SamplePointBuoyancy:
+    """``buoyancy``: the mesh model (with its ``drag``) or the sample points."""
     _only(bd, bk, ("model", "grid", "layout", "points", "max_depth", "curve", "alpha",
                    "direction", "depth_scale", "point_damping", "force_clamp", "drag"))
     buoyancy_model = _choice(bd, "model", bk, "mesh", ("mesh", "sample_points"))
@@ -429,12 +477,17 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         for extra in bd:
             if extra not in ("model", "drag"):
                 raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for model sample_points")
-        buoyancy = MeshBuoyancy(mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"))
-    else:
-        buoyancy = _sample_points(bd, bk, hull, volume)
+        return MeshBuoyancy(mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"))
+    return _sample_points(bd, bk, hull, mesh.volume)
 
-    dk = f"{key}.damping"
-    dd = _mapping(d.get("damping"), dk)
+
+def _damping(dd: Mapping[str, Any], dk: str
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    """``damping``: (6,) linear, quadratic and decay, and the critical ratios to add.
+
+    The ratios are [heave, roll, pitch]; None adds none. Default: DEFAULT_CRITICAL_RATIO when
+    ``linear`` is not given.
+    """
     _only(dd, dk, ("linear", "quadratic", "critical_ratio", "decay"))
     linear = _vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
     decay = _vector(dd, "decay", dk, 6, [0.0] * 6, low=0.0)
@@ -444,17 +497,18 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     ratio = (None if ratio_raw is None
              else _vector({"critical_ratio": ratio_raw}, "critical_ratio", dk, 3, [0.0] * 3,
                           low=0.0))
-    added = _vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0)
+    return linear, quadratic, decay, ratio
 
-    pk = f"{key}.propulsion"
-    pd = _mapping(d.get("propulsion"), pk)
+
+def _propulsion(pd: Mapping[str, Any], pk: str, hull: BoxHull) -> Propulsion:
+    """``propulsion``: the thruster (default at the transom, a quarter height down)."""
     _only(pd, pk, ("max_thrust", "position", "direction", "steerable", "at_center_of_mass",
                    "time_constant"))
     direction = _vector(pd, "direction", pk, 3, [1.0, 0.0, 0.0])
     norm = float(np.linalg.norm(direction))
     if norm < 1e-9:
         raise ScenarioError(f"{pk}.direction", pd.get("direction"), "must be a non-zero vector")
-    propulsion = Propulsion(
+    return Propulsion(
         max_thrust=_number(pd, "max_thrust", pk, 2000.0, 0.0, 1e8, low_open=True, unit="N"),
         position=_vector(pd, "position", pk, 3, [-hull.length / 2, 0.0, -hull.height / 4]),
         direction=direction / norm,
@@ -463,17 +517,21 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         time_constant=_number(pd, "time_constant", pk, 0.0, 0.0, 600.0, unit="s"),
     )
 
-    rk = f"{key}.rudder"
-    rd = _mapping(d.get("rudder"), rk)
+
+#: The keys each rudder model needs beyond the common ones.
+_RUDDER_NEEDS = {"lift": (), "torque": ("max_torque",),
+                 "hybrid": ("max_torque", "base_torque", "max_speed"), "none": ()}
+
+
+def _rudder(rd: Mapping[str, Any], rk: str, hull: BoxHull) -> Rudder:
+    """``rudder``: its model and the keys that model reads (default at the transom's bottom)."""
     _only(rd, rk, ("model", "max_angle_deg", "area", "lift_coefficient", "position",
                    "max_torque", "base_torque", "max_speed"))
     rudder_model = _choice(rd, "model", rk, "lift", RUDDER_MODELS)
-    needs = {"lift": (), "torque": ("max_torque",), "hybrid": ("max_torque", "base_torque",
-                                                                "max_speed"), "none": ()}
-    for k in needs[rudder_model]:
+    for k in _RUDDER_NEEDS[rudder_model]:
         if k not in rd:
             raise ScenarioError(f"{rk}.{k}", None, f"is required by the {rudder_model} model")
-    rudder = Rudder(
+    return Rudder(
         model=rudder_model,
         max_angle=math.radians(_number(rd, "max_angle_deg", rk, 35.0, 0.0, 90.0, low_open=True,
                                        unit="deg")),
@@ -485,45 +543,40 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         max_speed=_number(rd, "max_speed", rk, 1.0, 0.0, 1e3, low_open=True, unit="m/s"),
     )
 
-    kk = f"{key}.keel"
-    kd = _mapping(d.get("keel"), kk)
+
+def _keel_rate(kd: Mapping[str, Any], kk: str) -> float:
+    """``keel``: 1/s, the reflection rate (0 for the default ``damping`` keel)."""
     _only(kd, kk, ("model", "rate"))
     keel_model = _choice(kd, "model", kk, "damping", ("damping", "reflection"))
-    keel_rate = (_number(kd, "rate", kk, 1.0, 0.0, 1e3, low_open=True, unit="1/s")
-                 if keel_model == "reflection" else 0.0)
+    return (_number(kd, "rate", kk, 1.0, 0.0, 1e3, low_open=True, unit="1/s")
+            if keel_model == "reflection" else 0.0)
 
-    control = _control(d, key)
 
-    ik = f"{key}.initial_pose"
-    idd = _mapping(d.get("initial_pose"), ik)
-    _only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
-    params = BoatParams(
-        hull=hull, mass=mass, center_of_mass=com, inertia=inertia, inertia_products=products,
-        buoyancy=buoyancy,
-        damping_linear=linear, damping_quadratic=quadratic, damping_decay=decay,
-        added_mass=added, propulsion=propulsion, rudder=rudder,
-        water_density=sim.water_density, gravity=sim.gravity,
-        min_wavelength=_number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
-        wave_precision=sim.wave_precision,
-        keel_rate=keel_rate,
-        stokes_drift=_flag(d, "stokes_drift", key, False),
-    )
+def _derived(params: BoatParams, key: str, control: ControlSettings, ratio: np.ndarray | None,
+             derive_quadratic: bool) -> BoatParams:
+    """``params`` with its flat-water equilibrium and the damping left to derive.
+
+    The equilibrium is the kinematic modes' height offset; the damping is
+    :func:`_default_damping`'s. A hull that sinks is refused (key ``mass``).
+    """
     try:
         offset = equilibrium_height(params)
     except ValueError as exc:
         raise ScenarioError(f"{key}.mass", params.mass, str(exc)) from exc
-    if ratio is not None or "quadratic" not in dd:
-        params = _default_damping(params, dd, ratio, offset)
-    params = replace(params, control=replace(control, height_offset=offset))
-    initial = initial_state(
+    if ratio is not None or derive_quadratic:
+        params = _default_damping(params, derive_quadratic, ratio, offset)
+    return replace(params, control=replace(control, height_offset=offset))
+
+
+def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
+    """``initial_pose``: the state at rest there (hull reference point, degrees)."""
+    return initial_state(
         params,
         _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
         roll=math.radians(_number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),
         pitch=math.radians(_number(idd, "pitch_deg", ik, 0.0, -90.0, 90.0, unit="deg")),
         yaw=math.radians(_number(idd, "yaw_deg", ik, 0.0, -360.0, 360.0, unit="deg")),
     )
-    return BoatSpec(name=name, params=params, initial=initial,
-                    commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
 
 
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
@@ -532,7 +585,7 @@ DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 DEFAULT_DRAG_COEFFICIENTS = (0.5, 1.0, 1.0)
 
 
-def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.ndarray | None,
+def _default_damping(params: BoatParams, derive_quadratic: bool, ratio: np.ndarray | None,
                      z_eq: float) -> BoatParams:
     """Fill the damping the scenario left out with physically derived defaults.
 
@@ -544,7 +597,7 @@ def _default_damping(params: BoatParams, given: Mapping[str, Any], ratio: np.nda
     linear, quadratic = params.damping_linear, params.damping_quadratic
     if ratio is not None:
         linear = linear + critical_damping(params, ratio, z_eq)
-    if "quadratic" not in given:
+    if derive_quadratic:
         hull = params.hull
         bottom = float(np.min(params.buoyancy.mesh.vertices[:, 2])
                        if isinstance(params.buoyancy, MeshBuoyancy) else -hull.height / 2)

@@ -149,7 +149,6 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     """
     sim = scenario.simulation
     fast = options.fast or not sim.realtime
-    duration = options.duration if options.duration is not None else sim.duration
     epoch = options.epoch if options.epoch is not None else (0.0 if fast else time.time())
     clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
     if options.epoch is not None and not fast:  # joining a run that started at the epoch
@@ -160,105 +159,169 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
             replace(b, initial=afloat(b.params, replace(b.initial, t=clock.t), scenario.sea))
             for b in scenario.boats if b.name == options.boat))
     bag = BagWriter(options.record) if options.record else None
-    tap = bag.tap(clock.stamp_ns) if bag is not None else None
-
     stop = threading.Event()
     previous = {sig: signal.signal(sig, lambda *_: stop.set())
                 for sig in (signal.SIGINT, signal.SIGTERM)}
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-    executor = SingleThreadedExecutor()
-    nodes = []
-    display = _Status(status, len(scenario.boats))
+    loop = _Loop(scenario, options, clock, fast, bag, stop, _Status(status, len(scenario.boats)))
     try:
-        dynamics = ocean = None
-        if options.role in ("all", "boat"):
-            name = "boat_dynamics" if options.role == "all" else f"boat_dynamics_{options.boat}"
-            dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name)
-            nodes.append(dynamics)
-        if options.role in ("all", "ocean"):
-            ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
-                              surface_centers=dynamics.boat_positions if dynamics else None)
-            nodes.append(ocean)
-        logger = nodes[0].get_logger()
-        recorder = None
-        if bag is not None:
-            # The sim's own topics are tapped at their publishers; the recorder takes the rest.
-            recorder = TopicRecorder(
-                nodes[0], bag, clock.stamp_ns, skip=tap.topics,
-                qos=RECORD_QOS)
-            recorder.discover()
-        for n in nodes:
-            executor.add_node(n)
-        deadline = time.monotonic() + _FIELD_TIMEOUT
-        while dynamics is not None and dynamics.sea is None and not stop.is_set():
-            if time.monotonic() > deadline:
-                logger.error("no wave field received from the ocean node")
-                return 1
-            executor.spin_once(timeout_sec=0.05)
-        if stop.is_set():
-            return 0
-        if dynamics is not None:
-            dynamics.publish_outputs()
-        if ocean is not None:
-            ocean.advance(clock.t)
-        logger.info(
-            f"running {scenario.source}: {len(scenario.boats) if dynamics else 0} boat(s) at "
-            f"{sim.rate_hz:g} Hz, "
-            f"{'as fast as possible (/clock published)' if fast else 'real time'}"
-            + (f", for {duration:g} s" if duration else "")
-            + (f", recording to {bag.path}" if bag else ""))
-        wall0 = time.time() - clock.t if options.epoch is None else epoch
-        next_discovery = time.monotonic() + _DISCOVERY_PERIOD
-        next_spin = 0.0
-        display.start(clock.t)
-        while (duration is None or clock.t < duration - 0.5 / sim.rate_hz) and not stop.is_set():
-            if options.lockstep and dynamics is not None:
-                next_repeat = time.monotonic() + 0.1
-                while not dynamics.may_step() and not stop.is_set():
-                    executor.spin_once(timeout_sec=0.01)
-                    if time.monotonic() >= next_repeat:
-                        dynamics.repeat_clock()
-                        next_repeat = time.monotonic() + 0.1
-                if stop.is_set():
-                    break
-            if dynamics is not None:
-                dynamics.advance()
-            else:
-                clock.steps += 1
-            if ocean is not None:
-                ocean.advance(clock.t)
-            if fast and options.lockstep:
-                _spin_pending(executor)
-            elif fast:
-                if (now := time.monotonic()) >= next_spin:
-                    _spin_pending(executor)
-                    spent = time.monotonic() - now
-                    next_spin = now + spent + max(_FAST_SPIN_PERIOD, spent / _FAST_SPIN_SHARE)
-            else:
-                step_due = wall0 + clock.t
-                while (remaining := step_due - time.time()) > 0 and not stop.is_set():
-                    executor.spin_once(timeout_sec=remaining)
-            if recorder is not None and time.monotonic() > next_discovery:
-                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
-                recorder.discover()
-            if dynamics is not None:
-                display.update(dynamics, clock.t)
-        if dynamics is not None:
-            display.update(dynamics, clock.t, force=True)
-        return 0
+        return loop.run()
     except (KeyboardInterrupt, ExternalShutdownException):
         return 0
     finally:
-        display.close()
-        if bag is not None:
-            bag.close()
-            total = sum(bag.counts.values())
-            print(f"boatsim: wrote {total} messages on {len(bag.counts)} topics to {bag.path}",
-                  file=status)
-        for n in nodes:
-            executor.remove_node(n)
-            n.destroy_node()
-        executor.shutdown(timeout_sec=0.1)
+        loop.close(status)
         rclpy.try_shutdown()
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+
+
+class _Loop:
+    """The nodes of one ``boatsim run`` process and the loop that steps them.
+
+    Args:
+        scenario: the scenario (for a ``boat`` role: its one boat, afloat at the clock).
+        options: how to run.
+        clock: the simulation clock.
+        fast: as fast as possible (``--fast``, or ``realtime: false``).
+        bag: the bag to record to, or None.
+        stop: set by SIGINT / SIGTERM.
+        display: the status line.
+    """
+
+    def __init__(self, scenario: Scenario, options: RunOptions, clock: SimClock, fast: bool,
+                 bag: BagWriter | None, stop: threading.Event, display: _Status) -> None:
+        self.scenario, self.options, self.clock, self.fast = scenario, options, clock, fast
+        self.bag, self.stop, self.display = bag, stop, display
+        self.duration = (options.duration if options.duration is not None
+                         else scenario.simulation.duration)
+        self.executor = SingleThreadedExecutor()
+        self.dynamics = self.ocean = self.recorder = None
+        self.nodes = []
+        self._next_spin = 0.0  # fast mode: wall time (monotonic) of the next callback round
+
+    def _make_nodes(self) -> None:
+        """The dynamics and/or ocean node of this process's role, and the recorder."""
+        options, clock, bag, fast = self.options, self.clock, self.bag, self.fast
+        scenario = self.scenario
+        tap = bag.tap(clock.stamp_ns) if bag is not None else None
+        if options.role in ("all", "boat"):
+            name = "boat_dynamics" if options.role == "all" else f"boat_dynamics_{options.boat}"
+            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name)
+            self.nodes.append(self.dynamics)
+        if options.role in ("all", "ocean"):
+            self.ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
+                                   surface_centers=(self.dynamics.boat_positions
+                                                    if self.dynamics else None))
+            self.nodes.append(self.ocean)
+        self.logger = self.nodes[0].get_logger()
+        if bag is not None:
+            # The sim's own topics are tapped at their publishers; the recorder takes the rest.
+            self.recorder = TopicRecorder(self.nodes[0], bag, clock.stamp_ns, skip=tap.topics,
+                                          qos=RECORD_QOS)
+            self.recorder.discover()
+        for n in self.nodes:
+            self.executor.add_node(n)
+
+    def run(self) -> int:
+        """Make the nodes, wait for the sea state, step until the duration or a stop.
+
+        Returns:
+            The exit status: 0, or 1 when no wave field arrived.
+        """
+        self._make_nodes()
+        if not self._wait_for_sea():
+            return 1
+        if self.stop.is_set():
+            return 0
+        if self.dynamics is not None:
+            self.dynamics.publish_outputs()
+        if self.ocean is not None:
+            self.ocean.advance(self.clock.t)
+        self._log_start()
+        rate = self.scenario.simulation.rate_hz
+        wall0 = (time.time() - self.clock.t if self.options.epoch is None
+                 else self.options.epoch)
+        next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+        self.display.start(self.clock.t)
+        while ((self.duration is None or self.clock.t < self.duration - 0.5 / rate)
+               and not self.stop.is_set()):
+            if not self._hold_for_grant():
+                break
+            if self.dynamics is not None:
+                self.dynamics.advance()
+            else:
+                self.clock.steps += 1
+            if self.ocean is not None:
+                self.ocean.advance(self.clock.t)
+            self._serve_callbacks(wall0)
+            if self.recorder is not None and time.monotonic() > next_discovery:
+                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+                self.recorder.discover()
+            if self.dynamics is not None:
+                self.display.update(self.dynamics, self.clock.t)
+        if self.dynamics is not None:
+            self.display.update(self.dynamics, self.clock.t, force=True)
+        return 0
+
+    def _wait_for_sea(self) -> bool:
+        """Serve callbacks until the dynamics node has the wave field; False on a time-out."""
+        deadline = time.monotonic() + _FIELD_TIMEOUT
+        while self.dynamics is not None and self.dynamics.sea is None and not self.stop.is_set():
+            if time.monotonic() > deadline:
+                self.logger.error("no wave field received from the ocean node")
+                return False
+            self.executor.spin_once(timeout_sec=0.05)
+        return True
+
+    def _log_start(self) -> None:
+        sim = self.scenario.simulation
+        boats = len(self.scenario.boats) if self.dynamics else 0
+        self.logger.info(
+            f"running {self.scenario.source}: {boats} boat(s) at {sim.rate_hz:g} Hz, "
+            f"{'as fast as possible (/clock published)' if self.fast else 'real time'}"
+            + (f", for {self.duration:g} s" if self.duration else "")
+            + (f", recording to {self.bag.path}" if self.bag else ""))
+
+    def _hold_for_grant(self) -> bool:
+        """Lockstep: serve callbacks until the replayer grants the next step; False on a stop."""
+        if not self.options.lockstep or self.dynamics is None:
+            return True
+        next_repeat = time.monotonic() + 0.1
+        while not self.dynamics.may_step() and not self.stop.is_set():
+            self.executor.spin_once(timeout_sec=0.01)
+            if time.monotonic() >= next_repeat:
+                self.dynamics.repeat_clock()
+                next_repeat = time.monotonic() + 0.1
+        return not self.stop.is_set()
+
+    def _serve_callbacks(self, wall0: float) -> None:
+        """Serve ROS callbacks after a step.
+
+        All ready ones (lockstep); at most _FAST_SPIN_SHARE of the wall time (fast); or until
+        the next step is due on the wall clock (real time).
+        """
+        if self.fast and self.options.lockstep:
+            _spin_pending(self.executor)
+        elif self.fast:
+            if (now := time.monotonic()) >= self._next_spin:
+                _spin_pending(self.executor)
+                spent = time.monotonic() - now
+                self._next_spin = now + spent + max(_FAST_SPIN_PERIOD,
+                                                    spent / _FAST_SPIN_SHARE)
+        else:
+            step_due = wall0 + self.clock.t
+            while (remaining := step_due - time.time()) > 0 and not self.stop.is_set():
+                self.executor.spin_once(timeout_sec=remaining)
+
+    def close(self, status: TextIO) -> None:
+        """Finalize the bag, destroy the nodes, stop the executor."""
+        self.display.close()
+        if self.bag is not None:
+            self.bag.close()
+            total = sum(self.bag.counts.values())
+            print(f"boatsim: wrote {total} messages on {len(self.bag.counts)} topics to "
+                  f"{self.bag.path}", file=status)
+        for n in self.nodes:
+            self.executor.remove_node(n)
+            n.destroy_node()
+        self.executor.shutdown(timeout_sec=0.1)

@@ -84,7 +84,6 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
     from rosgraph_msgs.msg import Clock
     from std_msgs.msg import Float64, Float64MultiArray
 
-    from boat_msgs_py import names
     from boat_msgs_py.convert import time_to_seconds
     from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
 
@@ -119,20 +118,8 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         lockstep = not math.isnan(clock[0])
         log.info(f"replaying {len(schedule)} commands from {bag} "
                  f"({'lockstep with /clock' if lockstep else f'wall clock x{rate:g}'})")
-        sent = 0
-        start = time.monotonic()
-        for command in schedule:
-            if lockstep:
-                grant.publish(Float64MultiArray(data=[command.t, float(sent)]))
-                spin_until(lambda t=command.t: clock[0] >= t - 1e-9,
-                           f"the simulation to reach t = {command.t:.3f} s")
-            else:
-                spin_until(lambda t=command.t: (time.monotonic() - start) * rate >= t,
-                           "the wall clock")
-            pubs[command.topic].publish(Float64(data=command.value))
-            sent += 1
+        sent = _send(schedule, pubs, grant if lockstep else None, clock, rate, spin_until)
         if lockstep:
-            grant.publish(Float64MultiArray(data=[_FOREVER, float(sent)]))
             executor.spin_once(timeout_sec=0.1)
         log.info(f"replayed {sent} commands")
         return 0
@@ -140,3 +127,35 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         executor.shutdown(timeout_sec=0.1)
         node.destroy_node()
         rclpy.try_shutdown(context=context)
+
+
+def _send(schedule: list[Command], pubs: dict, grant, clock: list[float], rate: float,
+          spin_until) -> int:
+    """Publish every command at its time; returns how many were sent.
+
+    Args:
+        schedule: the commands, in time order.
+        pubs: a Float64 publisher per command topic.
+        grant: the lockstep publisher (grant "advance while t < T; n sent", wait on /clock),
+            or None to follow the wall clock.
+        clock: [the simulation's /clock, s], updated by its subscription.
+        rate: speed factor against the wall clock.
+        spin_until: serves callbacks until a condition holds (raises on a time-out).
+    """
+    from std_msgs.msg import Float64, Float64MultiArray
+
+    sent = 0
+    start = time.monotonic()
+    for command in schedule:
+        if grant is not None:
+            grant.publish(Float64MultiArray(data=[command.t, float(sent)]))
+            spin_until(lambda t=command.t: clock[0] >= t - 1e-9,
+                       f"the simulation to reach t = {command.t:.3f} s")
+        else:
+            spin_until(lambda t=command.t: (time.monotonic() - start) * rate >= t,
+                       "the wall clock")
+        pubs[command.topic].publish(Float64(data=command.value))
+        sent += 1
+    if grant is not None:
+        grant.publish(Float64MultiArray(data=[_FOREVER, float(sent)]))
+    return sent

@@ -41,6 +41,29 @@ def _keys(data: str) -> list[str]:
     return out
 
 
+def _apply_keys(data: str, throttle: float, rudder: float, max_rudder: float
+                ) -> tuple[float, float]:
+    """(throttle, rudder rad) after the keys in ``data``, each within its range."""
+    for key in _keys(data):
+        if key in KEYS:
+            dt, dr, stop = KEYS[key]
+            throttle = 0.0 if stop else min(1.0, max(-1.0, round(throttle + dt, 2)))
+            rudder = 0.0 if stop else min(max_rudder, max(-max_rudder, round(rudder + dr, 3)))
+    return throttle, rudder
+
+
+def _status(throttle: float, rudder: float, odom) -> str:
+    """The status line: the commands, and the boat's speed and heading from its odometry."""
+    speed = heading = float("nan")
+    if odom is not None:
+        speed = math.hypot(odom.twist.twist.linear.x, odom.twist.twist.linear.y)
+        o = odom.pose.pose.orientation
+        heading = math.degrees(math.atan2(2 * (o.w * o.z + o.x * o.y),
+                                          1 - 2 * (o.y * o.y + o.z * o.z)))
+    return (f"\rthrottle {throttle:+.2f}  rudder {rudder:+.3f} rad  "
+            f"speed {speed:5.2f} m/s  heading {heading:6.1f} deg   ")
+
+
 def teleop(namespace: str = "", max_rudder: float = math.radians(35.0)) -> int:
     """Run the keyboard driver until q or Ctrl-C; returns the exit status."""
     import rclpy
@@ -76,26 +99,13 @@ def teleop(namespace: str = "", max_rudder: float = math.radians(35.0)) -> int:
                 data = os.read(fd, 64).decode(errors="ignore")
                 if "q" in data or "\x03" in data:
                     break
-                for key in _keys(data):
-                    if key in KEYS:
-                        dt, dr, stop = KEYS[key]
-                        throttle = 0.0 if stop else min(1.0, max(-1.0, round(throttle + dt, 2)))
-                        rudder = 0.0 if stop else min(max_rudder, max(-max_rudder,
-                                                                      round(rudder + dr, 3)))
+                throttle, rudder = _apply_keys(data, throttle, rudder, max_rudder)
                 next_send = 0.0
             if time.monotonic() >= next_send:
                 thrust_pub.publish(Float64(data=throttle))
                 rudder_pub.publish(Float64(data=rudder))
                 next_send = time.monotonic() + 0.1
-                speed = heading = float("nan")
-                if odom:
-                    m = odom[0]
-                    speed = math.hypot(m.twist.twist.linear.x, m.twist.twist.linear.y)
-                    o = m.pose.pose.orientation
-                    heading = math.degrees(math.atan2(2 * (o.w * o.z + o.x * o.y),
-                                                      1 - 2 * (o.y * o.y + o.z * o.z)))
-                out.write(f"\rthrottle {throttle:+.2f}  rudder {rudder:+.3f} rad  "
-                          f"speed {speed:5.2f} m/s  heading {heading:6.1f} deg   ")
+                out.write(_status(throttle, rudder, odom[0] if odom else None))
                 out.flush()
             rclpy.spin_once(node, timeout_sec=0.0)
     except KeyboardInterrupt:

@@ -305,6 +305,29 @@ def _check_precision(precision: Precision) -> None:
         raise ValueError(f"precision {precision!r} is not allowed: must be one of {PRECISIONS}")
 
 
+def _newton_step(j: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """(N, 2) Newton step J^-1 r of the inversion, J = I - sum Q a k cos(theta) D D^T.
+
+    Args:
+        j: (N, 3) the sums' xx, xy and yy entries (``cos theta @ jac``).
+        r: (N, 2) m, the residuals.
+
+    Where J is near singular (det <= 1e-6) the step is the fixed-point step r itself.
+    """
+    jxx, jxy, jyy = 1.0 - j[:, 0], -j[:, 1], 1.0 - j[:, 2]
+    det = jxx * jyy - jxy * jxy
+    step = np.empty_like(r)
+    step[:, 0] = jyy * r[:, 0] - jxy * r[:, 1]
+    step[:, 1] = jxx * r[:, 1] - jxy * r[:, 0]
+    if det.min() > 1e-6:
+        step /= det[:, None]
+    else:  # J near singular: the fixed-point step there
+        ok = det > 1e-6
+        step /= np.where(ok, det, 1.0)[:, None]
+        step[~ok] = r[~ok]
+    return step
+
+
 def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: Precision, invert: bool,
            tol: float, max_iter: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Rest positions of world points and sin/cos of their phases.
@@ -337,20 +360,8 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: Precision, invert
         # costs less than (N, M) gathers and scatters (and gives the same numbers).
         full = 2 * active.size > n
         rows = slice(None) if full else active
-        j = c[rows] @ w.jac  # J = I - sum Q a k cos(theta) D D^T
-        jxx, jxy, jyy = 1.0 - j[:, 0], -j[:, 1], 1.0 - j[:, 2]
-        det = jxx * jyy - jxy * jxy
         ra = r[rows]
-        step = np.empty_like(ra)
-        step[:, 0] = jyy * ra[:, 0] - jxy * ra[:, 1]
-        step[:, 1] = jxx * ra[:, 1] - jxy * ra[:, 0]
-        if det.min() > 1e-6:
-            step /= det[:, None]
-        else:  # J near singular: the fixed-point step there
-            ok = det > 1e-6
-            step /= np.where(ok, det, 1.0)[:, None]
-            step[~ok] = ra[~ok]
-        cand = d[rows] - step
+        cand = d[rows] - _newton_step(c[rows] @ w.jac, ra)
         theta = base[rows] + cand @ w.kd
         sa = np.sin(theta)
         rc = cand - sa @ w.qad
