@@ -84,7 +84,7 @@ def bench_boat_step() -> None:
         ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}, (10,)),
     )
     for label, boat, fleet_sizes in cases:
-        sc = parse_scenario({"boats": [boat]})
+        sc = pipeline.init_scenario(parse_scenario({"boats": [boat]}))
         params, initial = sc.boats[0].params, sc.boats[0].initial
         n = 20 if "972" in label else 50
 
@@ -102,9 +102,9 @@ def bench_boat_step() -> None:
         figures = [f"alone {_best_of(alone, 15) / n * 1e6:8.1f}"]
         for fleet_size in fleet_sizes:
             side = math.ceil(math.sqrt(fleet_size))
-            fleet_sc = parse_scenario({"boats": [
+            fleet_sc = pipeline.init_scenario(parse_scenario({"boats": [
                 {**boat, "name": f"b{i}", "initial_pose": {"position": [
-                    12.0 * (i % side), 12.0 * (i // side), 0.0]}} for i in range(fleet_size)]})
+                    12.0 * (i % side), 12.0 * (i // side), 0.0]}} for i in range(fleet_size)]}))
             fleet = System.build([b.params for b in fleet_sc.boats])
             fleet_state = [FleetState.stack([b.initial for b in fleet_sc.boats])]
             commands = FleetInputs.stack([inputs] * fleet_size)

@@ -186,6 +186,7 @@ def _query(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
+    from boat_dynamics.physics.pipeline import InitError, start
     from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
@@ -199,8 +200,12 @@ def _run(args: argparse.Namespace) -> int:
     if args.verb == "_node":
         options = RunOptions(duration=args.duration, role=args.role, boat=args.boat,
                              epoch=args.epoch)
-        return run(scenario, options, status=open(os.devnull, "w") if args.quiet
-                   else sys.stderr)
+        try:
+            return run(scenario, options, status=open(os.devnull, "w") if args.quiet
+                       else sys.stderr)
+        except InitError as exc:
+            names = [b.name for b in scenario.boats]
+            return _refuse_boat(path, exc, names.index(args.boat) if args.boat in names else 0)
     if args.processes:
         if args.fast or args.lockstep or not scenario.simulation.realtime:
             print("boatsim: error: --processes runs in real time, without --fast or --lockstep "
@@ -208,8 +213,11 @@ def _run(args: argparse.Namespace) -> int:
                   file=sys.stderr)
             return 2
         from boat_dynamics.ros.processes import run_processes
-        from boat_dynamics.tools.recording import RecordError
 
+        try:  # refused here, before any process starts (each initializes its own boats)
+            start(scenario.boats, scenario.sea)
+        except InitError as exc:
+            return _refuse_boat(path, exc, exc.boat)
         try:
             return run_processes(scenario, str(path), RunOptions(duration=args.duration,
                                                                  record=args.record))
@@ -226,6 +234,15 @@ def _run(args: argparse.Namespace) -> int:
     except RecordError as exc:
         print(f"boatsim: error: {exc}", file=sys.stderr)
         return 2
+    except InitError as exc:
+        return _refuse_boat(path, exc, exc.boat)
+
+
+def _refuse_boat(path, exc, index: int) -> int:
+    """Exit status 2 for a boat ``pipeline.init`` refused, named as the scenario names it."""
+    print(f"boatsim: error: invalid scenario {path}: boats[{index}].{exc.key}: {exc.value!r} "
+          f"is not allowed: {exc.allowed}", file=sys.stderr)
+    return 2
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -23,3 +23,16 @@ def test_the_internal_verb_still_parses(capsys):
         main(["_node", "ocean"])
     assert exit_.value.code == 2
     assert "the following arguments are required: scenario, --epoch" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("extra", [[], ["--processes"], ["--fast", "--record", "BAG"]])
+def test_a_hull_that_sinks_is_refused_before_anything_starts(tmp_path, capsys, extra):
+    # The reader only parses; pipeline.init finds the hull sinks, and every path of `run`
+    # refuses it with exit status 2, naming the boat's key as the reader would.
+    path = tmp_path / "lead.yaml"
+    path.write_text("boats:\n  - {name: a}\n  - {name: lead, density: 2000.0}\n")
+    extra = [str(tmp_path / "bag") if a == "BAG" else a for a in extra]
+    assert main(["run", str(path), *extra]) == 2
+    err = capsys.readouterr().err
+    assert "boats[1].mass: 16000.0 is not allowed: the hull sinks" in err
+    assert not (tmp_path / "bag").exists()  # refused before the bag was created

@@ -37,7 +37,7 @@ __all__ = [
 
 
 def afloat(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
-    """``state`` with the velocity a boat has after floating a while (:func:`pipeline.init`).
+    """``state`` with the velocity a boat has after floating a while (:func:`pipeline.afloat`).
 
     Measured (tests/boat_dynamics/physics/test_boat.py), the default 4 m box, derived damping,
     mean drift 10-40 s after the start:
@@ -55,7 +55,7 @@ def afloat(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
     Returns:
         The state with that velocity (body frame); zero in still water.
     """
-    return pipeline.init(System.build([params]), FleetState.stack([state]), sea).boat(0)
+    return pipeline.afloat(System.build([params]), FleetState.stack([state]), sea).boat(0)
 
 
 def evaluate_forces(
@@ -116,3 +116,4 @@ def step_many(params: Sequence[BoatParams], states: Sequence[BoatState],
         for k, i in enumerate(members):
             out[i] = (done.state.boat(k), done.forces.boat(k))
     return out
+

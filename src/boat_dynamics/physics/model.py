@@ -24,10 +24,30 @@ __all__ = [
     "BoatInputs",
     "BoatParams",
     "BoatState",
+    "Derivation",
     "Forces",
     "initial_state",
     "reference_pose",
 ]
+
+
+@dataclass(frozen=True)
+class Derivation:
+    """What :func:`boat_dynamics.physics.pipeline.init` derives for a boat, once.
+
+    From the boat's own buoyancy model in flat water (:mod:`boat_dynamics.physics.tuning`):
+    always its equilibrium height (``control.height_offset``, which the kinematic modes
+    track; a hull that sinks is refused), and the damping a scenario left to derive.
+
+    Attributes:
+        critical_ratio: (3,) damping ratios [heave, roll, pitch] whose critical damping
+            2 zeta sqrt(k m) is added to ``damping_linear``; None = none.
+        quadratic: replace ``damping_quadratic`` by the default drag of the hull at its
+            equilibrium draft (:func:`boat_dynamics.physics.tuning.default_drag`).
+    """
+
+    critical_ratio: np.ndarray | None = None
+    quadratic: bool = False
 
 
 @dataclass(frozen=True)
@@ -58,6 +78,8 @@ class BoatParams:
             force, so not in wrench/damping); zeros = off.
         inertia_products: (3,) kg m^2, products of inertia [Ixy, Ixz, Iyz] = integral(x y dm),
             ... about the centre of mass (body axes); the tensor holds them negated.
+        derive: what ``pipeline.init`` still has to derive (a scenario's boats), or None once
+            derived (or for parameters given in full).
     """
 
     hull: BoxHull
@@ -79,6 +101,7 @@ class BoatParams:
     control: ControlSettings = field(default_factory=ControlSettings)
     inertia_products: np.ndarray = field(default_factory=lambda: np.zeros(3))
     damping_decay: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    derive: Derivation | None = None
 
 
 @dataclass(frozen=True)

@@ -1,35 +1,53 @@
 """The physics pipeline: ``init`` and ``step`` over a :class:`~.system.System` of boats.
 
-In the style of brax's pipeline: ``init(system, state, sea)`` prepares a state (boats start
-afloat), ``step(system, state, inputs, sea, dt)`` advances every boat by ``dt``. Both are pure
+In the style of brax's pipeline: ``init(system, state, sea)`` derives what the boats' own
+hydrostatics fix (their equilibrium, the damping a scenario left to derive) and sets them
+afloat; ``step(system, state, inputs, sea, dt)`` advances every boat by ``dt``. Both are pure
 functions over frozen dataclasses: what a step computes that another part needs (the forces
 for ``wrench/*``, the surface contact for ``/diagnostics``) is in the :class:`Step` it
-returns. The step only sums the force models' outputs (one module each) and integrates;
+returns. The step only sums the force models' outputs (:mod:`.forces`) and integrates;
 control modes other than ``dynamic`` are applied by :mod:`.modes` after the integration.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from boat_dynamics.physics import contact as _contact
-from boat_dynamics.physics.buoyancy import sample_point_group
-from boat_dynamics.physics.contact import Contact, GroupContact
-from boat_dynamics.physics.damping import damping, velocity_decay
-from boat_dynamics.physics.hull_drag import hull_drag_in_motion
+from boat_dynamics.physics.contact import Contact
+from boat_dynamics.physics.damping import velocity_decay
+from boat_dynamics.physics.forces import forces
 from boat_dynamics.physics.keel import reflect_off_keel
-from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
 from boat_dynamics.physics.modes import apply_modes, pd_torques
-from boat_dynamics.physics.propulsion import lagged_throttle, thrust
+from boat_dynamics.physics.propulsion import lagged_throttle
 from boat_dynamics.physics.rigid_body import integrate, rotation_matrix
-from boat_dynamics.physics.rudder import rudder_wrench
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
-from boat_dynamics.physics.wrench import Wrench
+from boat_dynamics.physics.tuning import derive
 from ocean_sim.physics.waves import WaveField, slope_orbit_velocity
 
-__all__ = ["Step", "forces", "init", "step"]
+if TYPE_CHECKING:
+    from boat_dynamics.physics.scenario import BoatSpec, Scenario
+
+__all__ = ["InitError", "Step", "afloat", "init", "init_scenario", "start", "step"]
+
+
+class InitError(ValueError):
+    """A boat that cannot be initialized (its hull sinks).
+
+    Attributes:
+        boat: the boat's place in the system.
+        key: the parameter at fault (``mass``).
+        value: its value.
+        allowed: what would have been accepted.
+    """
+
+    def __init__(self, boat: int, key: str, value: object, allowed: str) -> None:
+        self.boat, self.key, self.value, self.allowed = boat, key, value, allowed
+        super().__init__(f"boat {boat}: {key}: {value!r} is not allowed: {allowed}")
 
 
 @dataclass(frozen=True)
@@ -48,7 +66,61 @@ class Step:
     contact: Contact
 
 
-def init(system: System, state: FleetState, sea: WaveField) -> FleetState:
+def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, FleetState]:
+    """The system with its derived parameters, and the state afloat.
+
+    Each boat's :class:`~.model.Derivation` is computed once (:func:`.tuning.derive`: its
+    flat-water equilibrium height, the damping left to derive); then :func:`afloat`.
+
+    Args:
+        system: the boats, as a scenario gives them.
+        state: their state (velocities ignored).
+        sea: the wave field at ``state.t``.
+
+    Returns:
+        The system to step (nothing left to derive) and the state to start from.
+
+    Raises:
+        InitError: a boat's hull sinks.
+    """
+    params = []
+    for i, p in enumerate(system.params):
+        try:
+            params.append(derive(p))
+        except ValueError as exc:
+            raise InitError(i, "mass", p.mass, str(exc)) from exc
+    if any(a is not b for a, b in zip(params, system.params, strict=True)):
+        system = System.build(params)
+    return system, afloat(system, state, sea)
+
+
+def start(boats: Sequence[BoatSpec], sea: WaveField, t: float = 0.0
+          ) -> tuple[System, FleetState]:
+    """:func:`init` of a scenario's boats at time ``t`` (s), from their initial poses.
+
+    Raises:
+        InitError: a boat's hull sinks (``boat`` is its place in ``boats``).
+    """
+    return init(System.build([b.params for b in boats]),
+                FleetState.stack([replace(b.initial, t=t) for b in boats]), sea)
+
+
+def init_scenario(scenario: Scenario, t: float = 0.0) -> Scenario:
+    """``scenario`` with its boats initialized by :func:`start` at time ``t`` (s).
+
+    Each boat's parameters are derived (nothing left in ``derive``) and its initial state is
+    afloat: what the dynamics node steps, and what tests step one boat at a time.
+
+    Raises:
+        InitError: a boat's hull sinks.
+    """
+    system, state = start(scenario.boats, scenario.sea, t)
+    return replace(scenario, boats=tuple(
+        replace(b, params=system.params[i], initial=state.boat(i))
+        for i, b in enumerate(scenario.boats)))
+
+
+def afloat(system: System, state: FleetState, sea: WaveField) -> FleetState:
     """``state`` with each boat's velocity set to what it has after floating a while.
 
     Released at rest over ground, a boat in waves lacks the orbital velocity its buoyancy would
@@ -79,44 +151,6 @@ def init(system: System, state: FleetState, sea: WaveField) -> FleetState:
     body = np.einsum("bji,bj->bi", rotation_matrix(state.orientation), world)
     body[~world.any(axis=1)] = 0.0  # still water: +0.0, not the rotation's -0.0
     return replace(state, velocity=body)
-
-
-def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact
-           ) -> tuple[FleetForces, np.ndarray]:
-    """Every force model's wrench on every boat at ``state``, and their sum.
-
-    Args:
-        system: the boats.
-        state: their state.
-        inputs: their validated commands.
-        contact: the surface contact at ``state`` (:func:`.contact.contact`).
-
-    Returns:
-        The forces (body frames, about the centres of mass), and (B, 3) the surface normal
-        at each boat's hull reference point, world frame.
-    """
-    b = system.count
-    rot = contact.rotation
-    water_velocity, normals_ref = _at_reference(system, contact)
-    relative = state.velocity - np.einsum("bji,bj->bi", rot, water_velocity)  # body frame
-    buoy, drag = (np.zeros((b, 3)), np.zeros((b, 3))), (np.zeros((b, 3)), np.zeros((b, 3)))
-    for c in contact.groups:
-        _add(buoy, c.group.index, *_buoyancy(system, c, state))
-        mesh = c.group.mesh
-        if mesh is not None and (mesh.drag.viscous or mesh.drag.pressure):
-            _add(drag, c.group.index, *_hull_drag(system, c, state, relative))
-    com = system.center_of_mass
-    damp = damping(system.damping_linear, system.damping_quadratic, relative,
-                   state.angular_velocity)
-    push = _per_group(system, lambda g: thrust(g.propulsion, state.throttle[g.index],
-                                               inputs.rudder[g.index], com[g.index]))
-    steer = _per_group(system, lambda g: rudder_wrench(
-        g.rudder, inputs.rudder[g.index], relative[g.index, 0],
-        system.water_density[g.index], com[g.index]))
-    weight = Wrench((system.mass * system.gravity)[:, None] * -rot[:, 2, :], np.zeros((b, 3)))
-    buoy, drag = Wrench(*buoy), Wrench(*drag)
-    total = buoy + damp + drag + push + steer + weight
-    return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
 
 
 def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField, dt: float,
@@ -159,72 +193,3 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
         v, w = velocity_decay(v, w, system.decay, dt)
     after = FleetState(state.t + dt, p, q, v, w, throttle, state.control_weight)
     return Step(apply_modes(system, state, after, sea, dt), acting, contact)
-
-
-def _at_reference(system: System, contact: Contact) -> tuple[np.ndarray, np.ndarray]:
-    """Water velocity and surface normal at the boats' hull reference points.
-
-    Returns:
-        (B, 3) m/s, the water the damping is taken against (the surface water particle's
-        velocity, plus the sea's Stokes drift for boats with ``stokes_drift``), and (B, 3)
-        unit normals; world frame.
-    """
-    water_velocity = np.zeros((system.count, 3))
-    normals = np.zeros((system.count, 3))
-    for c in contact.groups:
-        g = c.group
-        water_velocity[g.index] = c.at_reference.velocities
-        normals[g.index] = c.at_reference.normals
-        if g.stokes_drift:
-            water_velocity[g.index] += contact.sea.filtered(g.min_wavelength
-                                                            ).surface_stokes_drift
-    return water_velocity, normals
-
-
-def _buoyancy(system: System, c: GroupContact, state: FleetState
-              ) -> tuple[np.ndarray, np.ndarray]:
-    """(G, 3) buoyancy force and torque of one group's boats, body frames."""
-    i = c.group.index
-    rho_g = system.water_density[i] * system.gravity[i]
-    if c.group.mesh is not None:
-        force, torque = pressure_wrenches(c.wet, c.wet_owner, i.shape[0], state.position[i],
-                                          rho_g)
-        return _to_body(c.rotation, force), _to_body(c.rotation, torque)
-    return sample_point_group(c.group.points, c.group.owner, i.shape[0], c.depths, c.rotation,
-                              system.center_of_mass[i], rho_g, c.surface.normals,
-                              c.surface.velocities, state.velocity[i],
-                              state.angular_velocity[i], system.mass[i])
-
-
-def _hull_drag(system: System, c: GroupContact, state: FleetState, relative: np.ndarray
-               ) -> tuple[np.ndarray, np.ndarray]:
-    """(G, 3) hull drag force and torque of one mesh group's boats, body frames."""
-    i = c.group.index
-    force, torque = hull_drag_in_motion(c.group.mesh.drag, c.wet, c.wet_owner, i.shape[0],
-                                        c.rotation, relative[i], state.angular_velocity[i],
-                                        state.position[i], c.group.length,
-                                        system.water_density[i])
-    return _to_body(c.rotation, force), _to_body(c.rotation, torque)
-
-
-def _to_body(rotation: np.ndarray, vectors: np.ndarray) -> np.ndarray:
-    """(G, 3) world-frame vectors in the boats' body frames (R^T v)."""
-    return np.einsum("bji,bj->bi", rotation, vectors)
-
-
-def _add(into: tuple[np.ndarray, np.ndarray], index: np.ndarray, force: np.ndarray,
-         torque: np.ndarray) -> None:
-    """Add a group's (G, 3) force and torque into the fleet's (B, 3) sums."""
-    into[0][index] += force
-    into[1][index] += torque
-
-
-def _per_group(system: System, model) -> Wrench:
-    """A force model evaluated group by group, gathered into (B, 3) force and torque."""
-    if len(system.groups) == 1:
-        return model(system.groups[0])
-    force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
-    for g in system.groups:
-        w = model(g)
-        force[g.index], torque[g.index] = w.force, w.torque
-    return Wrench(force, torque)

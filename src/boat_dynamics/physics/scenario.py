@@ -1,4 +1,9 @@
-"""Scenario files (YAML): parsing and validation into frozen core objects.
+"""Scenario files (YAML): parsing and validation into frozen specs, nothing more.
+
+The reader computes no physics: what a boat's own hydrostatics fix (its equilibrium, the
+damping the file leaves to derive) is asked for in ``BoatParams.derive``, and the boats start
+at rest at their initial poses; :func:`boat_dynamics.physics.pipeline.init` derives it and
+sets them afloat, once.
 
 The keys are the public contract of DESIGN.md ("Scenario file"). Every refusal raises
 :class:`ScenarioError` naming the key (as a path such as ``boats[0].hull.length``), the value
@@ -9,7 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -22,13 +27,10 @@ from boat_dynamics.physics.control import ATTITUDES, CONTROL_MODES, ControlSetti
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.physics.hull_drag import HullDrag
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.model import BoatParams, BoatState, initial_state
-from boat_dynamics.physics.pipeline import init
+from boat_dynamics.physics.model import BoatParams, BoatState, Derivation, initial_state
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.rigid_body import inertia_tensor
 from boat_dynamics.physics.rudder import RUDDER_MODELS, Rudder
-from boat_dynamics.physics.system import FleetState, System
-from boat_dynamics.physics.tuning import critical_damping, equilibrium_height
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.physics.waves import (
@@ -378,8 +380,9 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         wave_precision=sim.wave_precision,
         keel_rate=keel_rate,
         stokes_drift=_flag(d, "stokes_drift", key, False),
+        control=control,
+        derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd),
     )
-    params = _derived(params, key, control, ratio, "quadratic" not in dd)
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
 
@@ -552,24 +555,11 @@ def _keel_rate(kd: Mapping[str, Any], kk: str) -> float:
             if keel_model == "reflection" else 0.0)
 
 
-def _derived(params: BoatParams, key: str, control: ControlSettings, ratio: np.ndarray | None,
-             derive_quadratic: bool) -> BoatParams:
-    """``params`` with its flat-water equilibrium and the damping left to derive.
-
-    The equilibrium is the kinematic modes' height offset; the damping is
-    :func:`_default_damping`'s. A hull that sinks is refused (key ``mass``).
-    """
-    try:
-        offset = equilibrium_height(params)
-    except ValueError as exc:
-        raise ScenarioError(f"{key}.mass", params.mass, str(exc)) from exc
-    if ratio is not None or derive_quadratic:
-        params = _default_damping(params, derive_quadratic, ratio, offset)
-    return replace(params, control=replace(control, height_offset=offset))
-
-
 def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
-    """``initial_pose``: the state at rest there (hull reference point, degrees)."""
+    """``initial_pose``: the state at rest there (hull reference point, degrees).
+
+    At rest: :func:`boat_dynamics.physics.pipeline.init` sets it afloat in the waves.
+    """
     return initial_state(
         params,
         _vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
@@ -581,37 +571,6 @@ def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
 
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
 DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
-#: Drag coefficients [surge, sway, heave] of the default quadratic damping 1/2 rho C_d A.
-DEFAULT_DRAG_COEFFICIENTS = (0.5, 1.0, 1.0)
-
-
-def _default_damping(params: BoatParams, derive_quadratic: bool, ratio: np.ndarray | None,
-                     z_eq: float) -> BoatParams:
-    """Fill the damping the scenario left out with physically derived defaults.
-
-    linear += critical_damping(ratio) (heave, roll, pitch); quadratic, when not given:
-    1/2 rho C_d A on the projected areas at the equilibrium draft d (surge B d, sway L d,
-    heave L B) and, by strip theory of the sway drag along the hull, yaw rho C_d,y d L^4 / 64.
-    ``z_eq`` is the upright equilibrium height of the reference point (flat water).
-    """
-    linear, quadratic = params.damping_linear, params.damping_quadratic
-    if ratio is not None:
-        linear = linear + critical_damping(params, ratio, z_eq)
-    if derive_quadratic:
-        hull = params.hull
-        bottom = float(np.min(params.buoyancy.mesh.vertices[:, 2])
-                       if isinstance(params.buoyancy, MeshBuoyancy) else -hull.height / 2)
-        draft = min(max(-(z_eq + bottom), 0.0), hull.height)
-        cx, cy, cz = DEFAULT_DRAG_COEFFICIENTS
-        half_rho = 0.5 * params.water_density
-        quadratic = np.array([half_rho * cx * hull.beam * draft,
-                              half_rho * cy * hull.length * draft,
-                              half_rho * cz * hull.length * hull.beam,
-                              0.0, 0.0,
-                              params.water_density * cy * draft * hull.length**4 / 64.0])
-    return replace(params, damping_linear=linear, damping_quadratic=quadratic)
-
-
 def _hull_drag(raw: Any, key: str) -> HullDrag:
     d = _mapping(raw, key)
     fields = ("viscous", "form_factor", "kinematic_viscosity", "pressure", "reference_speed",
@@ -744,9 +703,4 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     for i, n in enumerate(names):
         if names.index(n) != i:
             raise ScenarioError(f"boats[{i}].name", n, "must be unique among the boats")
-    # afloat in the waves already at t = 0, not released at rest over ground (one surface
-    # query for all boats)
-    afloat = init(System.build([b.params for b in boats]),
-                  FleetState.stack([b.initial for b in boats]), sea)
-    boats = tuple(replace(b, initial=afloat.boat(i)) for i, b in enumerate(boats))
     return Scenario(simulation=sim, sea=sea, boats=boats, source=source)

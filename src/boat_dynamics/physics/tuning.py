@@ -13,14 +13,25 @@ from dataclasses import replace
 
 import numpy as np
 
-from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.contact import contact
+from boat_dynamics.physics.forces import forces
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from ocean_sim.physics.waves import WaveField
 
-__all__ = ["critical_damping", "equilibrium_height", "hydrostatic_stiffness"]
+__all__ = [
+    "DEFAULT_DRAG_COEFFICIENTS",
+    "critical_damping",
+    "default_drag",
+    "derive",
+    "equilibrium_height",
+    "hydrostatic_stiffness",
+]
+
+#: Drag coefficients [surge, sway, heave] of the default quadratic damping 1/2 rho C_d A.
+DEFAULT_DRAG_COEFFICIENTS = (0.5, 1.0, 1.0)
 
 _FLAT = WaveField()
 
@@ -36,8 +47,8 @@ def _vertical_buoyancy(system: System, z: float, roll: float = 0.0,
     """
     state = FleetState.stack([initial_state(system.params[0], [0.0, 0.0, z], roll=roll,
                                             pitch=pitch)])
-    forces, _ = pipeline.forces(system, state, _AT_REST, contact(system, state, _FLAT))
-    f = forces.boat(0).buoyancy
+    acting, _ = forces(system, state, _AT_REST, contact(system, state, _FLAT))
+    f = acting.boat(0).buoyancy
     return float((rotation_matrix(state.orientation[0]) @ f.force)[2]), f.torque
 
 
@@ -113,3 +124,48 @@ def critical_damping(params: BoatParams, ratios: np.ndarray, z0: float | None = 
     out = np.zeros(6)
     out[[2, 3, 4]] = b
     return out
+
+
+def default_drag(params: BoatParams, z_eq: float) -> np.ndarray:
+    """(6,) the default quadratic damping of a hull floating upright at height ``z_eq`` (m).
+
+    1/2 rho C_d A on the projected areas at the equilibrium draft d (surge B d, sway L d,
+    heave L B) and, by strip theory of the sway drag along the hull, yaw rho C_d,y d L^4 / 64;
+    roll and pitch none. C_d: :data:`DEFAULT_DRAG_COEFFICIENTS`. Units N/(m/s)^2 and
+    N m/(rad/s)^2.
+    """
+    hull = params.hull
+    bottom = float(np.min(params.buoyancy.mesh.vertices[:, 2])
+                   if isinstance(params.buoyancy, MeshBuoyancy) else -hull.height / 2)
+    draft = min(max(-(z_eq + bottom), 0.0), hull.height)
+    cx, cy, cz = DEFAULT_DRAG_COEFFICIENTS
+    half_rho = 0.5 * params.water_density
+    return np.array([half_rho * cx * hull.beam * draft,
+                     half_rho * cy * hull.length * draft,
+                     half_rho * cz * hull.length * hull.beam,
+                     0.0, 0.0,
+                     params.water_density * cy * draft * hull.length**4 / 64.0])
+
+
+def derive(params: BoatParams) -> BoatParams:
+    """``params`` with what its :class:`~.model.Derivation` asks for, computed once.
+
+    The equilibrium height (flat water, upright) becomes ``control.height_offset``; then
+    ``damping_linear`` += :func:`critical_damping` of ``critical_ratio`` and, with
+    ``quadratic``, ``damping_quadratic`` = :func:`default_drag`. Parameters with nothing to
+    derive (``derive`` None) are returned as they are.
+
+    Raises:
+        ValueError: the hull sinks (its fully submerged buoyancy is less than its weight).
+    """
+    wanted = params.derive
+    if wanted is None:
+        return params
+    z_eq = equilibrium_height(params)
+    linear, quadratic = params.damping_linear, params.damping_quadratic
+    if wanted.critical_ratio is not None:
+        linear = linear + critical_damping(params, wanted.critical_ratio, z_eq)
+    if wanted.quadratic:
+        quadratic = default_drag(params, z_eq)
+    return replace(params, damping_linear=linear, damping_quadratic=quadratic,
+                   control=replace(params.control, height_offset=z_eq), derive=None)

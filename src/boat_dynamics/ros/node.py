@@ -97,7 +97,8 @@ class DynamicsNode(Node):
     """Steps the boats of a scenario and publishes their odometry and wrenches.
 
     Args:
-        scenario: the validated scenario.
+        scenario: the scenario, its boats initialized
+            (:func:`boat_dynamics.physics.pipeline.init_scenario`).
         clock: the shared simulation clock (advanced by this node).
         publish_clock: publish /clock (the simulation owns time: --fast).
         tap: also hand every published message to this (recording), or None.
@@ -132,6 +133,9 @@ class DynamicsNode(Node):
                                          DIAGNOSTICS_QOS, tap)
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
+        if any(spec.params.derive is not None for spec in scenario.boats):
+            raise ValueError("scenario: its boats are not initialized (derive them and set "
+                             "them afloat with boat_dynamics.physics.pipeline.init_scenario)")
         self._system = System.build([spec.params for spec in scenario.boats])
         self._state = FleetState.stack([spec.initial for spec in scenario.boats])
         self._forces: FleetForces | None = None  # acting during the last step

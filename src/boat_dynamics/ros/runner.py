@@ -19,7 +19,8 @@ import rclpy
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor, TimeoutException
 from rclpy.signals import SignalHandlerOptions
 
-from boat_dynamics.physics.boat import afloat, reference_pose
+from boat_dynamics.physics.boat import reference_pose
+from boat_dynamics.physics.pipeline import init_scenario
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
 from boat_dynamics.ros.node import DynamicsNode, SimClock
@@ -146,6 +147,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
 
     Raises:
         RecordError: the bag directory cannot be created.
+        InitError: a boat's hull sinks.
     """
     sim = scenario.simulation
     fast = options.fast or not sim.realtime
@@ -153,11 +155,11 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
     if options.epoch is not None and not fast:  # joining a run that started at the epoch
         clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
-    if options.role == "boat":
-        # joining at clock.t: afloat there, as the scenario's boats are at t = 0
-        scenario = replace(scenario, boats=tuple(
-            replace(b, initial=afloat(b.params, replace(b.initial, t=clock.t), scenario.sea))
-            for b in scenario.boats if b.name == options.boat))
+    if options.role == "boat":  # one boat of --processes, joining at clock.t
+        scenario = replace(scenario, boats=tuple(b for b in scenario.boats
+                                                 if b.name == options.boat))
+    if options.role in ("all", "boat"):  # derived parameters, afloat at clock.t: once
+        scenario = init_scenario(scenario, clock.t)
     bag = BagWriter(options.record) if options.record else None
     stop = threading.Event()
     previous = {sig: signal.signal(sig, lambda *_: stop.set())

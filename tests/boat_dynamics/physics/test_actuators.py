@@ -5,12 +5,13 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import BoatInputs, initial_state, step
 from boat_dynamics.physics.keel import reflect_off_keel
 from boat_dynamics.physics.propulsion import Propulsion, lagged_throttle, thrust
 from boat_dynamics.physics.rudder import Rudder, rudder_wrench
-from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+from boat_dynamics.physics.scenario import ScenarioError
 from ocean_sim.physics.waves import WaveComponent, WaveField, stokes_drift
 
 STERN = np.array([-2.0, 0.0, -0.3])
@@ -97,7 +98,7 @@ def test_stokes_drift_option_carries_the_boat_with_the_waves(boat_factory):
 
 
 def test_scenario_keys_for_actuators():
-    sc = parse_scenario({"boats": [{
+    sc = ready({"boats": [{
         "propulsion": {"steerable": True, "time_constant": 0.5, "at_center_of_mass": False},
         "rudder": {"model": "hybrid", "max_torque": 500, "base_torque": 100, "max_speed": 5},
         "keel": {"model": "reflection", "rate": 0.5}, "stokes_drift": True}]})
@@ -105,17 +106,16 @@ def test_scenario_keys_for_actuators():
     assert p.propulsion.steerable and p.propulsion.time_constant == 0.5
     assert p.rudder.model == "hybrid" and p.keel_rate == 0.5 and p.stokes_drift
     with pytest.raises(ScenarioError, match=r"boats\[0\].rudder.max_torque: None"):
-        parse_scenario({"boats": [{"rudder": {"model": "torque"}}]})
+        ready({"boats": [{"rudder": {"model": "torque"}}]})
     with pytest.raises(ScenarioError, match=r"boats\[0\].propulsion.steerable: 'yes'"):
-        parse_scenario({"boats": [{"propulsion": {"steerable": "yes"}}]})
+        ready({"boats": [{"propulsion": {"steerable": "yes"}}]})
 
 
 def test_notes_velocity_decay_is_v_over_1_plus_c_dt_per_step():
     from dataclasses import replace
 
-    from boat_dynamics.physics.scenario import parse_scenario
 
-    sc = parse_scenario({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6,
+    sc = ready({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6,
                                                 "decay": [0.4, 0, 0, 0, 0, 0.8]}}]})
     params, rest = sc.boats[0].params, sc.boats[0].initial
     # separately: a yaw rate turns a body-frame surge velocity (w x v)
@@ -128,8 +128,8 @@ def test_notes_velocity_decay_is_v_over_1_plus_c_dt_per_step():
     assert gliding.velocity[0] == pytest.approx(2.0 / (1 + 0.4 * dt) ** n, rel=1e-9)
     assert spinning.angular_velocity[2] == pytest.approx(0.3 / (1 + 0.8 * dt) ** n, rel=1e-9)
     # off by default, and refused when negative
-    assert np.all(parse_scenario({}).boats[0].params.damping_decay == 0.0)
+    assert np.all(ready({}).boats[0].params.damping_decay == 0.0)
     from boat_dynamics.physics.scenario import ScenarioError
 
     with pytest.raises(ScenarioError, match=r"damping\.decay"):
-        parse_scenario({"boats": [{"damping": {"decay": [0, 0, 0, 0, 0, -1]}}]})
+        ready({"boats": [{"damping": {"decay": [0, 0, 0, 0, 0, -1]}}]})

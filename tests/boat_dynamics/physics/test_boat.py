@@ -5,6 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import (
     BoatInputs,
@@ -14,7 +15,6 @@ from boat_dynamics.physics.boat import (
     step,
 )
 from boat_dynamics.physics.rigid_body import quat_to_euler, rotation_matrix
-from boat_dynamics.physics.scenario import parse_scenario
 from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface, slope_orbit_velocity
 
 FLAT = WaveField()
@@ -179,7 +179,7 @@ def _wave(phase, amplitude=0.4, wavelength=40.0, steepness=1.0):
 @pytest.mark.parametrize("buoyancy", [{}, {"model": "sample_points", "direction": "normal"},
                                       {"model": "sample_points"}])
 def test_a_scenario_boat_starts_afloat(buoyancy):
-    sc = parse_scenario({"ocean": _wave(0.3, steepness=0.5), "boats": [
+    sc = ready({"ocean": _wave(0.3, steepness=0.5), "boats": [
         {"buoyancy": buoyancy, "initial_pose": {"position": [3.0, -2.0, 0.0], "yaw_deg": 50}}]})
     boat = sc.boats[0]
     pos, q = reference_pose(boat.params, boat.initial)
@@ -196,7 +196,7 @@ def test_a_scenario_boat_starts_afloat(buoyancy):
         assert start[:2].tolist() == [0.0, 0.0]
     assert not np.any(boat.initial.angular_velocity)
     # still water: at rest, exactly as before
-    assert parse_scenario({"boats": [{"buoyancy": buoyancy}]}).boats[0].initial.velocity.tolist(
+    assert ready({"boats": [{"buoyancy": buoyancy}]}).boats[0].initial.velocity.tolist(
     ) == [0.0, 0.0, 0.0]
 
 
@@ -217,7 +217,7 @@ def test_released_afloat_a_boat_does_not_drift_on_a_trochoidal_wave(phase):
     m/s here) and with quadratic surge drag alone (the derived damping) still drifts at
     0.27-0.29 m/s 10-40 s later: the control below.
     """
-    sc = parse_scenario({"ocean": _wave(phase), "boats": [{}]})
+    sc = ready({"ocean": _wave(phase), "boats": [{}]})
     assert sc.boats[0].params.damping_linear[0] == 0.0  # derived: nothing linear holds surge
     start = sc.boats[0].initial
     afloat_drift = _drift(sc, start)
@@ -232,7 +232,7 @@ def test_released_afloat_a_boat_does_not_drift_on_a_trochoidal_wave(phase):
 def test_with_q_below_1_the_hull_starts_on_the_slope_driven_orbit():
     """Q = 0.5: the pressure pushes the hull on the linear-theory orbit (amplitude a), not on
     the Gerstner particle's (Q a): started with the particle's velocity, it drifts."""
-    sc = parse_scenario({"ocean": _wave(0.0, amplitude=0.3, wavelength=25.0, steepness=0.5),
+    sc = ready({"ocean": _wave(0.0, amplitude=0.3, wavelength=25.0, steepness=0.5),
                          "boats": [{}]})
     start = sc.boats[0].initial
     water = sample_surface(sc.sea, start.position[None, :2], 0.0,

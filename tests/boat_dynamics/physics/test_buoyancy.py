@@ -4,11 +4,12 @@ import math
 
 import numpy as np
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import BoatInputs, initial_state, reference_pose, step
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy, sample_point_buoyancy
 from boat_dynamics.physics.hull import BoxHull
-from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+from boat_dynamics.physics.scenario import ScenarioError
 from ocean_sim.physics.waves import WaveField
 
 RHO, G = 1025.0, 9.81
@@ -67,7 +68,7 @@ def test_point_damping_is_proportional_to_mass_and_opposes_motion():
 
 
 def test_boat_layout_floats_at_the_archimedes_draft():
-    sc = parse_scenario({"boats": [{"mass": 2460.0, "buoyancy": {"model": "sample_points",
+    sc = ready({"boats": [{"mass": 2460.0, "buoyancy": {"model": "sample_points",
                                                                  "layout": "boat"}}]})
     p = sc.boats[0].params
     pts = p.buoyancy.points
@@ -82,13 +83,13 @@ def test_boat_layout_floats_at_the_archimedes_draft():
 
 def test_custom_points_and_refusals():
     pts = [[1.5, 0.8, -0.5], [1.5, -0.8, -0.5], [-1.5, 0.8, -0.5], [-1.5, -0.8, -0.5]]
-    sc = parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "layout": "custom",
+    sc = ready({"boats": [{"buoyancy": {"model": "sample_points", "layout": "custom",
                                                  "points": pts, "curve": "exponential"}}]})
     assert sc.boats[0].params.buoyancy.points.tolist() == pts
     with pytest.raises(ScenarioError, match=r"buoyancy.points"):
-        parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "layout": "custom",
+        ready({"boats": [{"buoyancy": {"model": "sample_points", "layout": "custom",
                                                 "points": [[1, 2]]}}]})
     with pytest.raises(ScenarioError, match=r"buoyancy.curve: 'cubic'"):
-        parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "curve": "cubic"}}]})
+        ready({"boats": [{"buoyancy": {"model": "sample_points", "curve": "cubic"}}]})
     with pytest.raises(ScenarioError, match=r"buoyancy.layout: 'boat' .*only for model"):
-        parse_scenario({"boats": [{"buoyancy": {"layout": "boat"}}]})
+        ready({"boats": [{"buoyancy": {"layout": "boat"}}]})

@@ -5,6 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import BoatInputs, reference_pose, step
 from boat_dynamics.physics.control import (
@@ -14,7 +15,6 @@ from boat_dynamics.physics.control import (
     stable_pd_torque,
 )
 from boat_dynamics.physics.rigid_body import integrate, quat_from_euler, rotation_matrix
-from boat_dynamics.physics.scenario import parse_scenario
 from ocean_sim.physics.waves import WaveField, sample_surface
 
 STEEP = {"components": [
@@ -24,7 +24,7 @@ STEEP = {"components": [
 
 
 def boat(mode="dynamic", sea=None, **control):
-    sc = parse_scenario({"ocean": STEEP if sea is None else sea,
+    sc = ready({"ocean": STEEP if sea is None else sea,
                          "boats": [{"control_mode": mode, "control": control}]})
     return sc.boats[0].params, sc.boats[0].initial, sc.sea
 
@@ -129,7 +129,7 @@ def test_blend_mode_pulls_toward_the_surface():
     undamped = {"damping": {"linear": [0] * 6, "quadratic": [0] * 6, "critical_ratio": [0] * 3}}
 
     def amplitude(mode):
-        sc = parse_scenario({"boats": [{**undamped, "control_mode": mode,
+        sc = ready({"boats": [{**undamped, "control_mode": mode,
                                          "control": {"blend": 0.5}}]})
         p, s = sc.boats[0].params, sc.boats[0].initial
         s = replace(s, position=s.position + [0, 0, 0.3])

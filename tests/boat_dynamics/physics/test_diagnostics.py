@@ -1,13 +1,13 @@
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import BoatInputs, initial_state
 from boat_dynamics.physics.diagnostics import boat_report
-from boat_dynamics.physics.scenario import parse_scenario
 from ocean_sim.physics.waves import WaveField
 
 
 def test_report_of_a_floating_box_is_its_hydrostatics():
-    sc = parse_scenario({"boats": [{"mass": 3280.0, "center_of_mass": [0, 0, -0.1]}]})
+    sc = ready({"boats": [{"mass": 3280.0, "center_of_mass": [0, 0, -0.1]}]})
     params = sc.boats[0].params
     d = 3280.0 / (1025 * 8.0)  # draft 0.4 m
     state = initial_state(params, [0.0, 0.0, 0.5 - d])
@@ -24,7 +24,7 @@ def test_report_of_a_floating_box_is_its_hydrostatics():
 
 
 def test_report_warns_when_submerged_or_airborne():
-    sc = parse_scenario({"boats": [{"buoyancy": {"model": "sample_points"}}]})
+    sc = ready({"boats": [{"buoyancy": {"model": "sample_points"}}]})
     params = sc.boats[0].params
     deep = boat_report(params, initial_state(params, [0, 0, -3.0]), WaveField())
     assert deep.level == 1 and deep.message == "fully submerged"
@@ -39,7 +39,7 @@ def test_fleet_reports_equal_each_boats_report():
     from boat_dynamics.physics.system import FleetState, System
     from ocean_sim.physics.waves import WaveComponent
 
-    sc = parse_scenario({"boats": [
+    sc = ready({"boats": [
         {"name": "a", "mass": 3280.0, "initial_pose": {"position": [0, 0, 0.1]}},
         {"name": "b", "mass": 2000.0, "hull": {"type": "box", "length": 3.0, "beam": 1.5,
                                                 "height": 1.0},
@@ -68,7 +68,7 @@ def test_reports_read_the_contact_they_are_given_and_refuse_another_states():
     from boat_dynamics.physics.system import FleetInputs, FleetState, System
     from ocean_sim.physics.waves import WaveComponent
 
-    sc = parse_scenario({"boats": [
+    sc = ready({"boats": [
         {"name": "a", "initial_pose": {"position": [0, 0, 0.3], "roll_deg": 5.0}},
         {"name": "b", "buoyancy": {"model": "sample_points"},
          "initial_pose": {"position": [10, 0, 0.2]}}]})

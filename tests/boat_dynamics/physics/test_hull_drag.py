@@ -5,17 +5,18 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import BoatInputs, evaluate_forces, initial_state
 from boat_dynamics.physics.hull_drag import HullDrag, friction_coefficient
-from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+from boat_dynamics.physics.scenario import ScenarioError
 from ocean_sim.physics.waves import WaveField
 
 L, B, D, U = 4.0, 2.0, 0.5, 2.0
 
 
 def moving_box(drag):
-    sc = parse_scenario({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6}}]})
+    sc = ready({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6}}]})
     params = sc.boats[0].params
     params = replace(params, buoyancy=replace(params.buoyancy, drag=drag))
     state = replace(initial_state(params, [0.0, 0.0, 0.0]), velocity=np.array([U, 0.0, 0.0]))
@@ -46,13 +47,13 @@ def test_pressure_drag_pushes_the_bow_and_pulls_the_stern():
 
 def test_no_drag_by_default_and_scenario_keys():
     assert not moving_box(HullDrag()).force.any()
-    sc = parse_scenario({"boats": [{"buoyancy": {"model": "mesh",
+    sc = ready({"boats": [{"buoyancy": {"model": "mesh",
                                                  "drag": {"viscous": True, "pressure": True,
                                                           "form_factor": 0.1}}}]})
     assert sc.boats[0].params.buoyancy.drag.viscous
     with pytest.raises(ScenarioError,
                        match=r"buoyancy.drag: \{\} is not allowed: only for model mesh"):
-        parse_scenario({"boats": [{"buoyancy": {"model": "sample_points", "drag": {}}}]})
-    assert math.isclose(parse_scenario({"boats": [{"inertia": [1, 2, 3],
+        ready({"boats": [{"buoyancy": {"model": "sample_points", "drag": {}}}]})
+    assert math.isclose(ready({"boats": [{"inertia": [1, 2, 3],
                                                    "inertia_scale": [2, 2, 2]}]})
                         .boats[0].params.inertia[2], 6.0)

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from ready_scenarios import ready
 
 from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.boat import BoatInputs, step
 from boat_dynamics.physics.contact import contact
-from boat_dynamics.physics.scenario import parse_scenario
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
@@ -44,7 +44,7 @@ BOATS = [
 def fleet_scenario(boats=BOATS):
     # float64 queries: float32 results depend on the batch (its phase-reduction centre) at the
     # 1e-7 m level, which would hide a real difference between the fleet and lone boats
-    return parse_scenario({"simulation": {"wave_precision": "float64"},
+    return ready({"simulation": {"wave_precision": "float64"},
                            "boats": [dict(b, name=f"b{i}", initial_pose={
         "position": [9.0 * i, 3.0 * (i % 3), 0.0], "yaw_deg": 20.0 * i})
         for i, b in enumerate(boats)]})
@@ -198,11 +198,48 @@ def test_stepping_changes_nothing_it_is_given():
         system.mass = None
 
 
-def test_init_is_exactly_zero_velocity_in_still_water_and_moves_with_waves():
+def test_afloat_is_exactly_zero_velocity_in_still_water_and_moves_with_waves():
     system, state, _ = _two_boats()
-    still = pipeline.init(system, state, WaveField())
+    still = pipeline.afloat(system, state, WaveField())
     assert np.array_equal(still.velocity, np.zeros_like(state.velocity))
     assert not np.signbit(still.velocity).any()
-    moving = pipeline.init(system, state, SEA)
+    moving = pipeline.afloat(system, state, SEA)
     assert np.abs(moving.velocity).max() > 0.05
     assert moving.position is state.position  # only the velocity is set
+
+
+def test_init_derives_each_boat_once_and_sets_it_afloat():
+    from boat_dynamics.physics.scenario import parse_scenario
+    from boat_dynamics.physics.tuning import critical_damping, default_drag, equilibrium_height
+
+    sc = parse_scenario({"boats": [{"name": "a"}, {"name": "b", "damping": {"linear": [0] * 6},
+                                                   "mass": 2000.0}]})
+    raw = [b.params for b in sc.boats]
+    assert all(p.derive is not None for p in raw)  # the reader leaves it to init
+    assert all(np.array_equal(b.initial.velocity, np.zeros(3)) for b in sc.boats)
+    system, state = pipeline.init(System.build(raw),
+                                  FleetState.stack([b.initial for b in sc.boats]), SEA)
+    a, b = system.params
+    assert a.derive is None and b.derive is None
+    z_a = equilibrium_height(raw[0])
+    assert a.control.height_offset == z_a
+    assert np.array_equal(a.damping_linear, critical_damping(raw[0], [0.2, 0.1, 0.2], z_a))
+    assert np.array_equal(a.damping_quadratic, default_drag(raw[0], z_a))
+    assert np.array_equal(b.damping_linear, np.zeros(6))  # linear given: no ratio added
+    assert b.damping_quadratic[2] > 0.0  # quadratic not given: derived
+    assert np.array_equal(state.velocity,
+                          pipeline.afloat(system, FleetState.stack([x.initial for x in sc.boats]),
+                                          SEA).velocity)
+    # nothing left to derive: init is then only the afloat start
+    again, _ = pipeline.init(system, state, SEA)
+    assert again is system
+
+
+def test_init_refuses_a_hull_that_sinks_naming_the_boat():
+    from boat_dynamics.physics.scenario import parse_scenario
+
+    sc = parse_scenario({"boats": [{"name": "a"}, {"name": "lead", "density": 2000.0}]})
+    with pytest.raises(pipeline.InitError, match="the hull sinks") as err:
+        pipeline.start(sc.boats, SEA)
+    assert err.value.boat == 1 and err.value.key == "mass"
+    assert err.value.value == pytest.approx(2000.0 * 8.0)

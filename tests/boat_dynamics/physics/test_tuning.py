@@ -5,9 +5,9 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from ready_scenarios import ready
 
 from boat_dynamics.physics.boat import BoatInputs, initial_state, reference_pose, step
-from boat_dynamics.physics.scenario import parse_scenario
 from boat_dynamics.physics.tuning import critical_damping, equilibrium_height, hydrostatic_stiffness
 from ocean_sim.physics.waves import WaveField
 
@@ -80,7 +80,7 @@ def test_energy_without_damping_is_bounded_over_100_s(boat_factory):
     {"amplitude": 0.2, "wavelength": 9.0, "direction_deg": 40, "steepness": 0.6}]}])
 def test_no_shooting_out_with_defaults(sea):
     """A hull released 5 m deep breaks the surface without flying clear of it."""
-    sc = parse_scenario({"ocean": sea, "boats": [{}]})
+    sc = ready({"ocean": sea, "boats": [{}]})
     boat = sc.boats[0]
     params = boat.params
     state = initial_state(params, [0.0, 0.0, -5.0])
@@ -98,20 +98,20 @@ def test_no_shooting_out_with_defaults(sea):
 
 
 def test_substeps_divide_the_step():
-    sc = parse_scenario({"simulation": {"rate_hz": 50, "substeps": 4}})
+    sc = ready({"simulation": {"rate_hz": 50, "substeps": 4}})
     assert sc.simulation.substeps == 4
     from boat_dynamics.physics.scenario import ScenarioError
     with pytest.raises(ScenarioError, match=r"simulation.substeps: 0"):
-        parse_scenario({"simulation": {"substeps": 0}})
+        ready({"simulation": {"substeps": 0}})
 
 
 def test_default_damping_is_derived_and_explicit_values_are_kept():
-    default = parse_scenario({}).boats[0].params
+    default = ready({}).boats[0].params
     b_crit = 2 * math.sqrt(1025 * 9.81 * 8.0 * default.mass)
     assert default.damping_linear[2] == pytest.approx(0.2 * b_crit, rel=1e-6)
     assert default.damping_quadratic[2] == pytest.approx(0.5 * 1025 * 1.0 * 8.0)
     assert default.damping_quadratic[1] == pytest.approx(0.5 * 1025 * 1.0 * 4.0 * 0.5, rel=1e-6)
-    explicit = parse_scenario({"boats": [{"damping": {"linear": [1, 2, 3, 4, 5, 6],
+    explicit = ready({"boats": [{"damping": {"linear": [1, 2, 3, 4, 5, 6],
                                                        "quadratic": [0] * 6}}]})
     assert explicit.boats[0].params.damping_linear.tolist() == [1, 2, 3, 4, 5, 6]
     assert explicit.boats[0].params.damping_quadratic.tolist() == [0] * 6

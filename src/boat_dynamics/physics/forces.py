@@ -1,0 +1,131 @@
+"""The force sum: every force model's wrench on every boat of a system at one state.
+
+Each force model is a function in its own module returning force and torque (buoyancy:
+:mod:`.mesh_buoyancy` and :mod:`.buoyancy`; :mod:`.hull_drag`, :mod:`.damping`,
+:mod:`.propulsion`, :mod:`.rudder`); this module only evaluates them group by group, from the
+surface contact of the state, and adds them up. :func:`boat_dynamics.physics.pipeline.step`
+integrates the total; :mod:`.tuning` reads the buoyancy of trial poses from here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from boat_dynamics.physics.buoyancy import sample_point_group
+from boat_dynamics.physics.contact import Contact, GroupContact
+from boat_dynamics.physics.damping import damping
+from boat_dynamics.physics.hull_drag import hull_drag_in_motion
+from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
+from boat_dynamics.physics.propulsion import thrust
+from boat_dynamics.physics.rudder import rudder_wrench
+from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
+from boat_dynamics.physics.wrench import Wrench
+
+__all__ = ["forces"]
+
+
+def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact
+           ) -> tuple[FleetForces, np.ndarray]:
+    """Every force model's wrench on every boat at ``state``, and their sum.
+
+    Args:
+        system: the boats.
+        state: their state.
+        inputs: their validated commands.
+        contact: the surface contact at ``state`` (:func:`.contact.contact`).
+
+    Returns:
+        The forces (body frames, about the centres of mass), and (B, 3) the surface normal
+        at each boat's hull reference point, world frame.
+    """
+    b = system.count
+    rot = contact.rotation
+    water_velocity, normals_ref = _at_reference(system, contact)
+    relative = state.velocity - np.einsum("bji,bj->bi", rot, water_velocity)  # body frame
+    buoy, drag = (np.zeros((b, 3)), np.zeros((b, 3))), (np.zeros((b, 3)), np.zeros((b, 3)))
+    for c in contact.groups:
+        _add(buoy, c.group.index, *_buoyancy(system, c, state))
+        mesh = c.group.mesh
+        if mesh is not None and (mesh.drag.viscous or mesh.drag.pressure):
+            _add(drag, c.group.index, *_hull_drag(system, c, state, relative))
+    com = system.center_of_mass
+    damp = damping(system.damping_linear, system.damping_quadratic, relative,
+                   state.angular_velocity)
+    push = _per_group(system, lambda g: thrust(g.propulsion, state.throttle[g.index],
+                                               inputs.rudder[g.index], com[g.index]))
+    steer = _per_group(system, lambda g: rudder_wrench(
+        g.rudder, inputs.rudder[g.index], relative[g.index, 0],
+        system.water_density[g.index], com[g.index]))
+    weight = Wrench((system.mass * system.gravity)[:, None] * -rot[:, 2, :], np.zeros((b, 3)))
+    buoy, drag = Wrench(*buoy), Wrench(*drag)
+    total = buoy + damp + drag + push + steer + weight
+    return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
+
+
+def _at_reference(system: System, contact: Contact) -> tuple[np.ndarray, np.ndarray]:
+    """Water velocity and surface normal at the boats' hull reference points.
+
+    Returns:
+        (B, 3) m/s, the water the damping is taken against (the surface water particle's
+        velocity, plus the sea's Stokes drift for boats with ``stokes_drift``), and (B, 3)
+        unit normals; world frame.
+    """
+    water_velocity = np.zeros((system.count, 3))
+    normals = np.zeros((system.count, 3))
+    for c in contact.groups:
+        g = c.group
+        water_velocity[g.index] = c.at_reference.velocities
+        normals[g.index] = c.at_reference.normals
+        if g.stokes_drift:
+            water_velocity[g.index] += contact.sea.filtered(g.min_wavelength
+                                                            ).surface_stokes_drift
+    return water_velocity, normals
+
+
+def _buoyancy(system: System, c: GroupContact, state: FleetState
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """(G, 3) buoyancy force and torque of one group's boats, body frames."""
+    i = c.group.index
+    rho_g = system.water_density[i] * system.gravity[i]
+    if c.group.mesh is not None:
+        force, torque = pressure_wrenches(c.wet, c.wet_owner, i.shape[0], state.position[i],
+                                          rho_g)
+        return _to_body(c.rotation, force), _to_body(c.rotation, torque)
+    return sample_point_group(c.group.points, c.group.owner, i.shape[0], c.depths, c.rotation,
+                              system.center_of_mass[i], rho_g, c.surface.normals,
+                              c.surface.velocities, state.velocity[i],
+                              state.angular_velocity[i], system.mass[i])
+
+
+def _hull_drag(system: System, c: GroupContact, state: FleetState, relative: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """(G, 3) hull drag force and torque of one mesh group's boats, body frames."""
+    i = c.group.index
+    force, torque = hull_drag_in_motion(c.group.mesh.drag, c.wet, c.wet_owner, i.shape[0],
+                                        c.rotation, relative[i], state.angular_velocity[i],
+                                        state.position[i], c.group.length,
+                                        system.water_density[i])
+    return _to_body(c.rotation, force), _to_body(c.rotation, torque)
+
+
+def _to_body(rotation: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """(G, 3) world-frame vectors in the boats' body frames (R^T v)."""
+    return np.einsum("bji,bj->bi", rotation, vectors)
+
+
+def _add(into: tuple[np.ndarray, np.ndarray], index: np.ndarray, force: np.ndarray,
+         torque: np.ndarray) -> None:
+    """Add a group's (G, 3) force and torque into the fleet's (B, 3) sums."""
+    into[0][index] += force
+    into[1][index] += torque
+
+
+def _per_group(system: System, model) -> Wrench:
+    """A force model evaluated group by group, gathered into (B, 3) force and torque."""
+    if len(system.groups) == 1:
+        return model(system.groups[0])
+    force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
+    for g in system.groups:
+        w = model(g)
+        force[g.index], torque[g.index] = w.force, w.torque
+    return Wrench(force, torque)
