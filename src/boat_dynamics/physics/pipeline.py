@@ -183,7 +183,9 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
         raise ValueError("contact: computed for another system, state or sea than the one "
                          "stepped")
     acting, normals = forces(system, state, inputs, contact)
-    torque = pd_torques(system, state, acting.total.torque, normals, dt)
+    torque = acting.total.torque
+    if system.special:  # control modes: rare, arcade
+        torque = pd_torques(system, state, torque, normals, dt)
     p, q, v, w = integrate(state.position, state.orientation, state.velocity,
                            state.angular_velocity, acting.total.force, torque,
                            system.effective_mass, system.effective_inertia, dt,
@@ -192,4 +194,6 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     if system.decay is not None:
         v, w = velocity_decay(v, w, system.decay, dt)
     after = FleetState(state.t + dt, p, q, v, w, throttle, state.control_weight)
-    return Step(apply_modes(system, state, after, sea, dt), acting, contact)
+    if system.special:
+        after = apply_modes(system, state, after, sea, dt)
+    return Step(after, acting, contact)

@@ -208,6 +208,7 @@ class System:
 
     Attributes:
         params: the boats' parameters.
+        count: B, the number of boats.
         groups: the boats grouped by code path.
         mass: (B,) kg.
         center_of_mass: (B, 3) m, body frame, from the hull reference point.
@@ -225,6 +226,7 @@ class System:
     """
 
     params: tuple[BoatParams, ...]
+    count: int
     groups: tuple[Group, ...]
     mass: np.ndarray
     center_of_mass: np.ndarray
@@ -239,11 +241,6 @@ class System:
     gravity: np.ndarray
     keel_rate: np.ndarray
     special: tuple[int, ...]
-
-    @property
-    def count(self) -> int:
-        """B, the number of boats."""
-        return len(self.params)
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -260,7 +257,7 @@ class System:
         products = np.array([p.inertia_products for p in ps], dtype=float)
         decay = np.array([p.damping_decay for p in ps], dtype=float)
         return cls(
-            params=ps, groups=groups, mass=mass,
+            params=ps, count=len(ps), groups=groups, mass=mass,
             center_of_mass=np.array([p.center_of_mass for p in ps], dtype=float),
             inertia=inertia, effective_mass=mass[:, None] + added[:, :3],
             effective_inertia=inertia + added[:, 3:],
