@@ -145,3 +145,16 @@ def test_topic_names_and_qos_only_in_boat_msgs_py():
         found += [f"{where}:{n.lineno}: QoSProfile(...)" for n in ast.walk(tree)
                   if isinstance(n, ast.Call) and getattr(n.func, "id", None) == "QoSProfile"]
     assert found == []
+
+
+def test_the_contract_package_sits_between_the_layers():
+    # boat_msgs_py converts core objects to messages: it may read the physics layers, never
+    # the ROS nodes or tools that use it (no package cycle through the adapters).
+    bad = {}
+    for f in sorted((SRC / "boat_msgs_py").rglob("*.py")):
+        names = [n for _, n in imported_names(f.read_text(encoding="utf-8"))
+                 if n.split(".")[0] in ("ocean_sim", "boat_dynamics")
+                 and not n.startswith(("ocean_sim.physics", "boat_dynamics.physics"))]
+        if names:
+            bad[f.name] = names
+    assert bad == {}
