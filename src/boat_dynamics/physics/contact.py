@@ -15,7 +15,7 @@ import numpy as np
 from boat_dynamics.physics.mesh_buoyancy import SubmergedTriangles, clip_hulls
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.system import FleetState, Group, System
-from ocean_sim.physics.waves import SurfaceSample, WaveField, sample_surface
+from ocean_sim.physics.waves import SurfaceSample, WaveField, pressure_head, sample_surface
 
 __all__ = ["Contact", "GroupContact", "contact", "reference_points"]
 
@@ -102,7 +102,11 @@ def contact(system: System, state: FleetState, sea: WaveField) -> Contact:
         depths = surface.heights - world[:, 2]
         wet = wet_owner = None
         if g.mesh is not None:
-            wet = clip_hulls(g.faces, world, depths)
+            heads = None  # hydrostatic: the depths
+            if g.mesh.pressure == "froude_krylov":
+                heads = pressure_head(sea.filtered(g.min_wavelength), surface.rest_xy,
+                                      surface.heights, world[:, 2], state.t)
+            wet = clip_hulls(g.faces, world, depths, heads)
             wet_owner = g.face_owner.take(wet.faces)
         out.append(GroupContact(g, rot[g.index], world, depths, surface, at_ref, wet,
                                 wet_owner))

@@ -11,7 +11,17 @@ from functools import cached_property
 
 import numpy as np
 
-__all__ = ["BoxHull", "HullMesh", "HullMeshError", "box_mesh", "check_mesh", "load_mesh"]
+__all__ = [
+    "BoxHull",
+    "HullMesh",
+    "HullMeshError",
+    "box_mesh",
+    "check_mesh",
+    "load_mesh",
+    "longest_edge",
+    "refine",
+    "subdivide",
+]
 
 
 @dataclass(frozen=True)
@@ -191,6 +201,42 @@ def box_mesh(hull: BoxHull, subdivisions: int = 1) -> HullMesh:
     merged = np.zeros((unique.shape[0], 3))
     merged[inverse.ravel()] = vertices
     return HullMesh(merged, inverse.ravel()[faces])
+
+
+def subdivide(mesh: HullMesh) -> HullMesh:
+    """Each triangle split in four at its edge midpoints (shared edges share their midpoint).
+
+    The surface is unchanged (same planes), so volume, hydrostatics and watertightness are
+    kept; edges halve.
+    """
+    faces = mesh.faces
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    unique, inverse = np.unique(np.sort(edges, axis=1), axis=0, return_inverse=True)
+    mid = mesh.vertices.shape[0] + inverse.ravel().reshape(3, -1)  # (3, F): m01, m12, m20
+    vertices = np.concatenate([mesh.vertices, 0.5 * (mesh.vertices[unique[:, 0]]
+                                                     + mesh.vertices[unique[:, 1]])])
+    a, b, c = faces.T
+    m01, m12, m20 = mid
+    new = np.stack([np.stack([a, m01, m20], axis=1), np.stack([m01, b, m12], axis=1),
+                    np.stack([m20, m12, c], axis=1), np.stack([m01, m12, m20], axis=1)], axis=1)
+    return HullMesh(vertices, new.reshape(-1, 3))
+
+
+def longest_edge(mesh: HullMesh) -> float:
+    """m, the longest triangle edge of the mesh."""
+    c = mesh.corners
+    return float(np.sqrt(((c - np.roll(c, 1, axis=1)) ** 2).sum(axis=2)).max())
+
+
+def refine(mesh: HullMesh, max_edge: float, max_triangles: int) -> HullMesh:
+    """``mesh`` subdivided (:func:`subdivide`) until no edge exceeds ``max_edge`` (m).
+
+    Stops before a subdivision would pass ``max_triangles`` (the cost bound); returns the mesh
+    itself when it is fine enough already.
+    """
+    while longest_edge(mesh) > max_edge and 4 * mesh.faces.shape[0] <= max_triangles:
+        mesh = subdivide(mesh)
+    return mesh
 
 
 def check_mesh(mesh: HullMesh, source: str = "mesh") -> None:

@@ -19,18 +19,21 @@ variant, "true center of pressure").
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
+from typing import Literal, get_args
 
 import numpy as np
 
-from boat_dynamics.physics.hull import HullMesh
+from boat_dynamics.physics.hull import HullMesh, refine
 from boat_dynamics.physics.hull_drag import HullDrag
 from boat_dynamics.physics.wrench import Wrench, cross, sum_by_owner
 
 __all__ = [
+    "PRESSURE_MODELS",
     "Hydrostatics",
     "MeshBuoyancy",
+    "PressureModel",
     "SubmergedTriangles",
     "clip_hulls",
     "clip_parts",
@@ -38,9 +41,18 @@ __all__ = [
     "hydrostatics",
     "hydrostatics_of",
     "mesh_buoyancy",
+    "panelled",
     "pressure_wrenches",
     "submerged_triangles",
 ]
+
+
+#: The pressure on the wetted hull: ``hydrostatic``, rho g (eta - z) (the seed notes' surfacic
+#: method: the full surface elevation at every depth), or ``froude_krylov``, hydrostatic plus
+#: the incident waves' pressure with the depth decay of linear theory
+#: (:func:`ocean_sim.physics.waves.pressure_head`).
+PressureModel = Literal["hydrostatic", "froude_krylov"]
+PRESSURE_MODELS: tuple[PressureModel, ...] = get_args(PressureModel)
 
 
 @dataclass(frozen=True)
@@ -50,10 +62,19 @@ class MeshBuoyancy:
     Attributes:
         mesh: the closed hull mesh (body frame, origin at the hull reference point).
         drag: friction and pressure drag options on the wetted triangles.
+        pressure: the pressure model.
+        panels_per_wavelength: ``froude_krylov``: :func:`boat_dynamics.physics.pipeline.init`
+            subdivides the mesh until no edge is longer than the shortest wave acting on the
+            boat over this (the pressure is interpolated linearly over each triangle) ...
+        max_triangles: ... unless that would take the hull past this many triangles (the cost
+            bound: the surface is queried at every vertex every step).
     """
 
     mesh: HullMesh
     drag: HullDrag = field(default_factory=HullDrag)
+    pressure: PressureModel = "hydrostatic"
+    panels_per_wavelength: float = 10.0
+    max_triangles: int = 4096
 
 
 #: The submerged parts of a triangle by its wet corners, coded w0 + 2 w1 + 4 w2: up to two
@@ -74,7 +95,8 @@ _CODE = np.array([1, 2, 4], dtype=np.int8)
 _NEXT = np.array([1, 2, 0])
 
 
-def clip_parts(xyz: np.ndarray, depths: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def clip_parts(xyz: np.ndarray, depths: np.ndarray, heads: np.ndarray | None = None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The submerged parts of triangles, as triangles, without a branch per case.
 
     Each triangle's wet corners make a code (0-7) that looks up its parts in a table; the
@@ -88,10 +110,12 @@ def clip_parts(xyz: np.ndarray, depths: np.ndarray) -> tuple[np.ndarray, np.ndar
     Args:
         xyz: (3, 3, F) m, coordinate k of corner j of triangle f at [k, j, f], world frame.
         depths: (3, F) m, depth below the surface at each corner (> 0 = submerged).
+        heads: (3, F) m, pressure head p / (rho g) at each corner, if not the depth.
 
     Returns:
-        (3, 3, T) corners and (3, T) depths (0 on the waterline) of the parts, same layout,
-        and (T,) int the triangle each comes from; winding is preserved.
+        (3, 3, T) corners, (3, T) depths and (3, T) pressure heads (both 0 on the waterline:
+        the surface) of the parts, same layout, and (T,) int the triangle each comes from;
+        winding is preserved. The heads are the depths (the same array) when not given.
     """
     f = depths.shape[1]
     wet = (depths > 0.0).view(np.int8)
@@ -107,8 +131,12 @@ def clip_parts(xyz: np.ndarray, depths: np.ndarray) -> tuple[np.ndarray, np.ndar
     points[:, 3:] = xyz + t * (xyz.take(_NEXT, axis=1) - xyz)
     point_depths = np.zeros((6, f))
     point_depths[:3] = depths
-    return (points.reshape(3, 6 * f).take(pick, axis=1), point_depths.reshape(6 * f).take(pick),
-            source)
+    part_depths = point_depths.reshape(6 * f).take(pick)
+    part_heads = part_depths
+    if heads is not None:
+        point_depths[:3] = heads
+        part_heads = point_depths.reshape(6 * f).take(pick)
+    return points.reshape(3, 6 * f).take(pick, axis=1), part_depths, part_heads, source
 
 
 def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
@@ -124,8 +152,8 @@ def clip_submerged(corners: np.ndarray, depths: np.ndarray, normals: np.ndarray
         (T, 3, 3) corners, (T, 3) depths (0 on the waterline), (T, 3) normals of the submerged
         triangles; winding is preserved.
     """
-    xyz, d, source = clip_parts(np.ascontiguousarray(corners.transpose(2, 1, 0)),
-                                np.ascontiguousarray(depths.T))
+    xyz, d, _, source = clip_parts(np.ascontiguousarray(corners.transpose(2, 1, 0)),
+                                   np.ascontiguousarray(depths.T))
     return xyz.transpose(2, 1, 0), d.T, normals[source]
 
 
@@ -141,18 +169,22 @@ class SubmergedTriangles:
         vector_areas: (3, T) m^2, area times outward unit normal: all that pressure
             integrals need.
         faces: (T,) int, the hull face each part comes from.
+        heads: (3, T) m, the pressure head p / (rho g) at each corner (``depths`` itself for
+            hydrostatic pressure).
     """
 
     xyz: np.ndarray
     depths: np.ndarray
     vector_areas: np.ndarray
     faces: np.ndarray
+    heads: np.ndarray
 
     @classmethod
-    def of(cls, xyz: np.ndarray, depths: np.ndarray, faces: np.ndarray) -> SubmergedTriangles:
+    def of(cls, xyz: np.ndarray, depths: np.ndarray, faces: np.ndarray,
+           heads: np.ndarray | None = None) -> SubmergedTriangles:
         """The parts with their vector areas (e1 x e2) / 2."""
         return cls(xyz, depths, 0.5 * cross(xyz[:, 1] - xyz[:, 0], xyz[:, 2] - xyz[:, 0], axis=0),
-                   faces)
+                   faces, depths if heads is None else heads)
 
     @property
     def corners(self) -> np.ndarray:
@@ -177,8 +209,8 @@ class SubmergedTriangles:
         return ((self.xyz[:, 0] + self.xyz[:, 1] + self.xyz[:, 2]) / 3.0).T
 
 
-def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.ndarray
-               ) -> SubmergedTriangles:
+def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.ndarray,
+               vertex_heads: np.ndarray | None = None) -> SubmergedTriangles:
     """Clip hulls at the surface sampled at their vertices (see :func:`clip_parts`).
 
     Args:
@@ -186,11 +218,13 @@ def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.
             wound counter-clockwise seen from outside.
         vertices_world: (V, 3) m.
         vertex_depths: (V,) m, surface height minus vertex height.
+        vertex_heads: (V,) m, pressure head at each vertex, if not the depth (hydrostatic).
     """
     corners = faces.T
-    xyz, d, source = clip_parts(vertices_world.T.take(corners, axis=1),
-                                vertex_depths.take(corners))
-    return SubmergedTriangles.of(xyz, d, source)
+    heads = None if vertex_heads is None else vertex_heads.take(corners)
+    xyz, d, h, source = clip_parts(vertices_world.T.take(corners, axis=1),
+                                   vertex_depths.take(corners), heads)
+    return SubmergedTriangles.of(xyz, d, source, h)
 
 
 def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
@@ -202,7 +236,10 @@ def submerged_triangles(model: MeshBuoyancy, vertices_world: np.ndarray,
 def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
                       center_of_mass_world: np.ndarray, rho_g: np.ndarray
                       ) -> tuple[np.ndarray, np.ndarray]:
-    """Hydrostatic pressure force and torque on each hull, world frame.
+    """Pressure force and torque on each hull, world frame.
+
+    The pressure is rho g h, the head h linear over each part (:attr:`SubmergedTriangles.heads`:
+    the depth for hydrostatic pressure).
 
     Args:
         wet: the submerged triangles of ``count`` hulls.
@@ -214,7 +251,7 @@ def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
     Returns:
         (B, 3) N forces and (B, 3) N m torques about the centres of mass, world frame.
     """
-    p, d, vector_area = wet.xyz, wet.depths, wet.vector_areas
+    p, d, vector_area = wet.xyz, wet.heads, wet.vector_areas
     dsum = d[0] + d[1] + d[2]
     com = center_of_mass_world.T.take(owner, axis=1)  # (3, T)
     # integral(r d dA) = A / 12 sum_j r_j (sum_k d_k + d_j), r about the centre of mass
@@ -227,6 +264,21 @@ def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
     per_triangle[3:] = (rho_g_t * (-1.0 / 12.0)) * cross(moment, vector_area, axis=0)
     sums = sum_by_owner(per_triangle.T, owner, count)
     return sums[:, :3], sums[:, 3:]
+
+
+def panelled(model: MeshBuoyancy, shortest_wavelength: float) -> MeshBuoyancy:
+    """``model`` with a mesh fine enough for its pressure in waves of ``shortest_wavelength`` m.
+
+    For ``froude_krylov`` pressure the mesh is subdivided
+    (:func:`boat_dynamics.physics.hull.refine`) until its longest edge is at most
+    shortest_wavelength / panels_per_wavelength, within ``max_triangles``. The model itself
+    for hydrostatic pressure, a still sea (``inf``) or a mesh already fine enough.
+    """
+    if model.pressure != "froude_krylov" or not np.isfinite(shortest_wavelength):
+        return model
+    mesh = refine(model.mesh, shortest_wavelength / model.panels_per_wavelength,
+                  model.max_triangles)
+    return model if mesh is model.mesh else replace(model, mesh=mesh)
 
 
 def mesh_buoyancy(

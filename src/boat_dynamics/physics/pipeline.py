@@ -11,6 +11,7 @@ control modes other than ``dynamic`` are applied by :mod:`.modes` after the inte
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
@@ -22,6 +23,8 @@ from boat_dynamics.physics.contact import Contact
 from boat_dynamics.physics.damping import velocity_decay
 from boat_dynamics.physics.forces import forces
 from boat_dynamics.physics.keel import reflect_off_keel
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, panelled
+from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.modes import apply_modes, pd_torques
 from boat_dynamics.physics.propulsion import lagged_throttle
 from boat_dynamics.physics.rigid_body import integrate, rotation_matrix
@@ -70,7 +73,10 @@ def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, Fle
     """The system with its derived parameters, and the state afloat.
 
     Each boat's :class:`~.model.Derivation` is computed once (:func:`.tuning.derive`: its
-    flat-water equilibrium height, the damping left to derive); then :func:`afloat`.
+    flat-water equilibrium height, the damping left to derive); a mesh hull with
+    ``froude_krylov`` pressure is refined for the shortest wave of ``sea`` acting on it
+    (:func:`.mesh_buoyancy.panelled`; a later change of the sea keeps that mesh); then
+    :func:`afloat`.
 
     Args:
         system: the boats, as a scenario gives them.
@@ -86,12 +92,25 @@ def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, Fle
     params = []
     for i, p in enumerate(system.params):
         try:
-            params.append(derive(p))
+            params.append(_panelled(derive(p), sea))
         except ValueError as exc:
             raise InitError(i, "mass", p.mass, str(exc)) from exc
     if any(a is not b for a, b in zip(params, system.params, strict=True)):
         system = System.build(params)
     return system, afloat(system, state, sea)
+
+
+def _panelled(params: BoatParams, sea: WaveField) -> BoatParams:
+    """``params`` with its mesh refined for the shortest wave acting on it.
+
+    Only for ``froude_krylov`` pressure (:func:`.mesh_buoyancy.panelled`).
+    """
+    if not isinstance(params.buoyancy, MeshBuoyancy):
+        return params
+    acting = sea.filtered(params.min_wavelength).components
+    shortest = min((c.wavelength for c in acting if c.amplitude > 0.0), default=math.inf)
+    model = panelled(params.buoyancy, shortest)
+    return params if model is params.buoyancy else replace(params, buoyancy=model)
 
 
 def start(boats: Sequence[BoatSpec], sea: WaveField, t: float = 0.0

@@ -26,7 +26,7 @@ from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.control import ATTITUDES, CONTROL_MODES, ControlSettings
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.physics.hull_drag import HullDrag
-from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
 from boat_dynamics.physics.model import BoatParams, BoatState, Derivation, initial_state
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.rigid_body import inertia_tensor
@@ -474,14 +474,39 @@ def _buoyancy(bd: Mapping[str, Any], bk: str, hull: BoxHull, mesh: HullMesh
               ) -> MeshBuoyancy | SamplePointBuoyancy:
     """``buoyancy``: the mesh model (with its ``drag``) or the sample points."""
     _only(bd, bk, ("model", "grid", "layout", "points", "max_depth", "curve", "alpha",
-                   "direction", "depth_scale", "point_damping", "force_clamp", "drag"))
+                   "direction", "depth_scale", "point_damping", "force_clamp", "drag",
+                   *_MESH_ONLY))
     buoyancy_model = _choice(bd, "model", bk, "mesh", ("mesh", "sample_points"))
     if buoyancy_model == "mesh":
         for extra in bd:
-            if extra not in ("model", "drag"):
+            if extra not in ("model", "drag", *_MESH_ONLY):
                 raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for model sample_points")
-        return MeshBuoyancy(mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"))
+        return _mesh_buoyancy(bd, bk, mesh)
+    for extra in _MESH_ONLY:
+        if extra in bd:
+            raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for model mesh")
     return _sample_points(bd, bk, hull, mesh.volume)
+
+
+#: The mesh model's keys besides ``drag``.
+_MESH_ONLY = ("pressure", "panels_per_wavelength", "max_triangles")
+
+
+def _mesh_buoyancy(bd: Mapping[str, Any], bk: str, mesh: HullMesh) -> MeshBuoyancy:
+    """The mesh model: its ``drag``, ``pressure`` model and, for ``froude_krylov``, panel size."""
+    pressure = _choice(bd, "pressure", bk, "hydrostatic", PRESSURE_MODELS)
+    for extra in ("panels_per_wavelength", "max_triangles"):
+        if extra in bd and pressure != "froude_krylov":
+            raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for pressure froude_krylov")
+    max_triangles = bd.get("max_triangles", 4096)
+    if (isinstance(max_triangles, bool) or not isinstance(max_triangles, int)
+            or not 12 <= max_triangles <= 1_000_000):
+        raise ScenarioError(f"{bk}.max_triangles", max_triangles,
+                            "must be an integer in [12, 1000000]")
+    return MeshBuoyancy(
+        mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"), pressure=pressure,
+        panels_per_wavelength=_number(bd, "panels_per_wavelength", bk, 10.0, 1.0, 100.0),
+        max_triangles=max_triangles)
 
 
 def _damping(dd: Mapping[str, Any], dk: str

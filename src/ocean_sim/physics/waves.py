@@ -41,6 +41,7 @@ __all__ = [
     "angular_frequency",
     "displace",
     "find_rest_positions",
+    "pressure_head",
     "sample_surface",
     "slope_orbit_velocity",
     "stokes_drift",
@@ -539,6 +540,51 @@ def slope_orbit_velocity(wf: WaveField, rest_xy: np.ndarray, t: float) -> np.nda
     amplitude = wf.gravity * ar.k * ar.a / ar.omega
     cos_theta = np.cos(p0 @ ar.kd + _time_phase(wf, t))
     return cos_theta @ (amplitude[:, None] * np.stack([ar.dx, ar.dy], axis=1))
+
+
+def pressure_head(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray, z: np.ndarray,
+                  t: float) -> np.ndarray:
+    """(N,) m, the pressure head p / (rho g) at world points below the surface.
+
+    Hydrostatic plus the Froude-Krylov pressure of the incident waves, with Wheeler stretching.
+    Linear (Airy) theory gives each component's dynamic pressure rho g a cos(theta) E(z), with
+    the depth decay E = e^{k z} in deep water and cosh(k (z + h)) / cosh(k h) at depth h
+    (Dean & Dalrymple 1991, eq. 4.23; Newman, "Marine Hydrodynamics", sec. 6.3). It is defined
+    up to the mean level z = 0; Wheeler stretching (Wheeler 1970) maps the water column
+    [-h, eta] onto [-h, 0], evaluating E at z_s = h (z - eta) / (h + eta) (z - eta in deep
+    water), so that the pressure is exactly zero on the instantaneous surface and hydrostatic
+    far below it::
+
+        p / (rho g) = sum_i a_i cos(theta_i(p0)) E_i(z_s) - z
+
+    The phases are those of the surface particle above the point (its rest position p0 from
+    :attr:`SurfaceSample.rest_xy`), so that on the Gerstner surface sum_i a_i cos theta_i is
+    its height eta. In still water the head is exactly -z.
+
+    Args:
+        wf: the sea state (already filtered to the components acting on the body).
+        rest_xy: (N, 2) m, rest positions of the surface particles above the points.
+        heights: (N,) m, the surface height eta above each point.
+        z: (N,) m, the points' heights (below ``heights``).
+        t: simulation time, s.
+    """
+    z = np.asarray(z, dtype=float)
+    if not wf.components:
+        return -z
+    ar = wf.arrays
+    eta = np.asarray(heights, dtype=float)
+    cos_theta = np.cos(np.asarray(rest_xy, dtype=float) @ ar.kd + _time_phase(wf, t))
+    if math.isinf(wf.depth):
+        decay = np.exp(np.multiply.outer(np.minimum(z - eta, 0.0), ar.k))
+    else:
+        h = wf.depth
+        zs = np.clip(h * (z - eta) / (h + eta), -h, 0.0)
+        # cosh(k (zs + h)) / cosh(k h) = e^{k zs} (1 + e^{-2 k (zs + h)}) / (1 + e^{-2 k h}),
+        # which does not overflow for deep finite water (k h > 710)
+        k_zs = np.multiply.outer(zs, ar.k)
+        decay = (np.exp(k_zs) * (1.0 + np.exp(-2.0 * (k_zs + ar.k * h)))
+                 / (1.0 + np.exp(-2.0 * ar.k * h)))
+    return (cos_theta * decay) @ ar.a - z
 
 
 def stokes_drift(wf: WaveField, depth_below_surface: float = 0.0) -> np.ndarray:

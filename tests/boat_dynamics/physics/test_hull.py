@@ -11,6 +11,9 @@ from boat_dynamics.physics.hull import (
     box_mesh,
     check_mesh,
     load_mesh,
+    longest_edge,
+    refine,
+    subdivide,
 )
 
 
@@ -80,3 +83,26 @@ def test_inertia_tensor_of_a_turned_box_is_the_turned_diagonal():
     products = turned.inertia_products(100.0)
     assert products == pytest.approx([-expected[0, 1], -expected[0, 2], -expected[1, 2]])
     assert np.all(box.inertia_products(100.0) == pytest.approx(0.0, abs=1e-12))
+
+
+def test_subdividing_keeps_the_surface_and_halves_the_edges():
+    box = trimesh.creation.icosphere(subdivisions=1, radius=1.0)
+    mesh = HullMesh(np.asarray(box.vertices), np.asarray(box.faces))
+    finer = subdivide(mesh)
+    check_mesh(finer)  # closed, outward, no degenerate triangle
+    assert finer.faces.shape[0] == 4 * mesh.faces.shape[0]
+    # each shared edge has one midpoint: V - E + F = 2 still holds
+    assert finer.vertices.shape[0] - 3 * finer.faces.shape[0] // 2 + finer.faces.shape[0] == 2
+    assert finer.volume == pytest.approx(mesh.volume, rel=1e-12)  # same planes
+    assert finer.inertia_tensor(10.0) == pytest.approx(mesh.inertia_tensor(10.0), rel=1e-12)
+    assert longest_edge(finer) == pytest.approx(longest_edge(mesh) / 2, rel=1e-12)
+
+
+def test_refining_stops_at_the_edge_length_or_the_triangle_budget():
+    mesh = box_mesh(BoxHull(4.0, 2.0, 1.0))  # longest edge: a 4 x 2 face's diagonal, 4.47 m
+    assert refine(mesh, 5.0, 4096) is mesh
+    fine = refine(mesh, 0.6, 4096)
+    assert longest_edge(fine) <= 0.6 < 2 * longest_edge(fine)
+    assert fine.faces.shape[0] == 12 * 4**3
+    capped = refine(mesh, 0.01, 1000)
+    assert capped.faces.shape[0] == 12 * 4**3  # 768: one more would make 3,072 > 1,000

@@ -38,6 +38,7 @@ BOATS = [
     {"control_mode": "constrained"},
     {"control_mode": "blend"},
     {"inertia": [3000, 9000, 10000], "inertia_products": [0, 800, 0]},
+    {"buoyancy": {"pressure": "froude_krylov", "max_triangles": 200}},
 ]
 
 
@@ -59,9 +60,10 @@ def test_a_mixed_fleet_stepped_together_equals_each_boat_alone():
     params = [b.params for b in sc.boats]
     inputs = commands(len(params))
     fleet = System.build(params)
-    # boats 0, 1 and 7-10 share a code path (control modes apply after the step); 2-6 do not
+    # boats 0, 1 and 7-10 share a code path (control modes apply after the step); 2-6 and 11
+    # (Froude-Krylov pressure) do not
     assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9, 10], [2], [3],
-                                                               [4], [5], [6]]
+                                                               [4], [5], [6], [11]]
     state = FleetState.stack([b.initial for b in sc.boats])
     alone = [b.initial for b in sc.boats]
     for _ in range(200):
@@ -243,3 +245,27 @@ def test_init_refuses_a_hull_that_sinks_naming_the_boat():
         pipeline.start(sc.boats, SEA)
     assert err.value.boat == 1 and err.value.key == "mass"
     assert err.value.value == pytest.approx(2000.0 * 8.0)
+
+
+def test_init_panels_froude_krylov_hulls_for_the_shortest_wave_acting_on_them():
+    from boat_dynamics.physics.hull import longest_edge
+    from boat_dynamics.physics.scenario import parse_scenario
+
+    sc = parse_scenario({"boats": [
+        {"name": "fk", "buoyancy": {"pressure": "froude_krylov"}},
+        {"name": "coarse", "buoyancy": {"pressure": "froude_krylov", "panels_per_wavelength": 2}},
+        {"name": "capped", "buoyancy": {"pressure": "froude_krylov", "max_triangles": 100}},
+        {"name": "filtered", "buoyancy": {"pressure": "froude_krylov"}, "min_wavelength": 5.0},
+        {"name": "hydrostatic"}]})
+    system, _ = pipeline.init(System.build([b.params for b in sc.boats]),
+                              FleetState.stack([b.initial for b in sc.boats]), SEA)
+    meshes = [p.buoyancy.mesh for p in system.params]
+    shortest = min(c.wavelength for c in SEA.components)  # 3 m
+    assert longest_edge(meshes[0]) <= shortest / 10 < 2 * longest_edge(meshes[0])
+    assert longest_edge(meshes[1]) <= shortest / 2 < 2 * longest_edge(meshes[1])
+    assert meshes[2].faces.shape[0] == 48  # 12 -> 48; 192 would pass 100
+    assert longest_edge(meshes[3]) <= 7.0 / 10  # the 3 m component does not act on it
+    assert meshes[4] is sc.boats[4].params.buoyancy.mesh  # hydrostatic: untouched
+    still, _ = pipeline.init(System.build([sc.boats[0].params]),
+                             FleetState.stack([sc.boats[0].initial]), WaveField())
+    assert still.params[0].buoyancy.mesh is sc.boats[0].params.buoyancy.mesh

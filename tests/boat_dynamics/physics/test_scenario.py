@@ -84,6 +84,16 @@ def test_density_derives_mass():
                     "components": [{"amplitude": 1.0, "wavelength": 8.0, "steepness": 1.0}]}},
          "ocean", "components and spectrum together"),
         ({"boats": [{"min_wavelength": -1}]}, "boats[0].min_wavelength", "[0, 10000] m"),
+        ({"boats": [{"buoyancy": {"pressure": "airy"}}]}, "boats[0].buoyancy.pressure",
+         "hydrostatic, froude_krylov"),
+        ({"boats": [{"buoyancy": {"panels_per_wavelength": 8}}]},
+         "boats[0].buoyancy.panels_per_wavelength", "only for pressure froude_krylov"),
+        ({"boats": [{"buoyancy": {"pressure": "froude_krylov", "panels_per_wavelength": 0.5}}]},
+         "boats[0].buoyancy.panels_per_wavelength", "[1, 100]"),
+        ({"boats": [{"buoyancy": {"pressure": "froude_krylov", "max_triangles": 4.5}}]},
+         "boats[0].buoyancy.max_triangles", "integer in [12, 1000000]"),
+        ({"boats": [{"buoyancy": {"model": "sample_points", "pressure": "froude_krylov"}}]},
+         "boats[0].buoyancy.pressure", "only for model mesh"),
     ],
 )
 def test_refusals_name_key_value_and_allowed(data, key, fragment):

@@ -249,3 +249,42 @@ def test_slope_orbit_velocity_is_the_time_integral_of_the_slope_push():
 def test_unknown_precision_is_refused():
     with pytest.raises(ValueError, match="precision 'float16' is not allowed"):
         sample_surface(STEEP_SEA, [[0.0, 0.0]], 0.0, precision="float16")
+
+
+def test_pressure_head_is_hydrostatic_in_still_water_and_zero_on_any_surface():
+    from ocean_sim.physics.waves import pressure_head
+
+    z = np.array([-3.0, -0.5, 0.0])
+    assert np.array_equal(pressure_head(WaveField(), np.zeros((3, 2)), np.zeros(3), z, 1.0), -z)
+    rng = np.random.default_rng(5)
+    xy = rng.uniform(-30, 30, (200, 2))
+    for depth in (math.inf, 8.0):
+        sea = WaveField((WaveComponent(0.5, 20.0, 0.3, 0.9, 0.2),
+                         WaveComponent(0.2, 7.0, -1.2, 0.6, 1.0)), depth=depth)
+        s = sample_surface(sea, xy, 3.7)
+        at_surface = pressure_head(sea, s.rest_xy, s.heights, s.heights, 3.7)
+        assert np.abs(at_surface).max() < 1e-12  # Wheeler stretching: p = 0 on the surface
+        below = pressure_head(sea, s.rest_xy, s.heights, s.heights - rng.uniform(0, 5, 200), 3.7)
+        assert below.min() > 0.0  # the water pushes wherever it is
+
+
+@pytest.mark.parametrize("depth", [math.inf, 3.0, 1e4])
+def test_pressure_head_decays_with_depth_as_linear_theory(depth):
+    # a small sine wave: p / (rho g) = -z + a cos(theta) E(z), E = e^{kz} deep,
+    # cosh k(z + h) / cosh kh in finite depth (Dean & Dalrymple eq. 4.23)
+    from ocean_sim.physics.waves import pressure_head
+
+    a, lam = 1e-4, 5.0
+    k = 2 * math.pi / lam
+    sea = WaveField((WaveComponent(a, lam, 0.0, 0.0, 0.4),), depth=depth)
+    x = np.linspace(0, lam, 7)
+    xy = np.stack([x, np.zeros_like(x)], axis=1)
+    s = sample_surface(sea, xy, 0.9)
+    theta = k * x - angular_frequency(k, 9.81, depth) * 0.9 + 0.4
+    for z in (-0.3, -1.0, -2.5):
+        head = pressure_head(sea, s.rest_xy, s.heights, np.full(7, z), 0.9)
+        decay = (math.exp(k * z) if depth > 1e3  # deep (cosh k h overflows a float)
+                 else math.cosh(k * (z + depth)) / math.cosh(k * depth))
+        # stretching moves the decay by eta = O(a): a relative error of O(k a)
+        np.testing.assert_allclose(head + z, a * np.cos(theta) * decay, rtol=0, atol=a * k * a)
+        assert np.all(np.isfinite(head))
