@@ -10,7 +10,7 @@ MSGS_SRC := $(MSGS)/CMakeLists.txt $(MSGS)/package.xml $(wildcard $(MSGS)/msg/*.
 ROSENV := VIRTUAL_ENV=$(abspath $(VENV)) AMENT_PREFIX_PATH=$(abspath $(VENV)) PATH=$(abspath $(VENV))/bin:$$PATH
 ARGS ?=
 
-.PHONY: setup run test bench lint clean regold
+.PHONY: setup run test bench lint clean regold bem
 
 setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
 
@@ -47,6 +47,9 @@ bench: setup
 
 regold: setup
 	$(VPY) tests/golden/regold.py
+
+bem: setup
+	$(VPY) -m pip install --quiet --disable-pip-version-check "capytaine==3.0.0"
 
 lint: setup
 	$(VENV)/bin/ruff check src tests benchmarks

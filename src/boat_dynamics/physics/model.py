@@ -12,6 +12,7 @@ import numpy as np
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.control import ControlSettings
 from boat_dynamics.physics.hull import BoxHull
+from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.rigid_body import quat_from_euler, rotation_matrix
@@ -44,10 +45,18 @@ class Derivation:
             2 zeta sqrt(k m) is added to ``damping_linear``; None = none.
         quadratic: replace ``damping_quadratic`` by the default drag of the hull at its
             equilibrium draft (:func:`boat_dynamics.physics.tuning.default_drag`).
+        coefficients: the hull's potential-flow coefficients, or None.
+        added_mass: set ``added_mass`` from ``coefficients``: heave, roll and pitch at their
+            natural frequencies, surge, sway and yaw at infinite frequency.
+        radiation_damping: add the radiation damping B_ii at the natural frequency to
+            ``damping_linear`` in heave, roll and pitch (from ``coefficients``).
     """
 
     critical_ratio: np.ndarray | None = None
     quadratic: bool = False
+    coefficients: HydroCoefficients | None = None
+    added_mass: bool = False
+    radiation_damping: bool = False
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.control import ATTITUDES, CONTROL_MODES, ControlSettings
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.physics.hull_drag import HullDrag
+from boat_dynamics.physics.hydro import HydroCoefficients, HydroFileError, load_coefficients
 from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
 from boat_dynamics.physics.model import BoatParams, BoatState, Derivation, initial_state
 from boat_dynamics.physics.propulsion import Propulsion
@@ -345,7 +346,7 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
-              "inertia_scale", "inertia_products")
+              "inertia_scale", "inertia_products", "hydrodynamics")
 
 
 def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -367,6 +368,11 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     rudder = _rudder(_mapping(d.get("rudder"), f"{key}.rudder"), f"{key}.rudder", hull)
     keel_rate = _keel_rate(_mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel")
     control = _control(d, key)
+    coefficients = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics", base_dir, com)
+    radiation = (coefficients is not None and "linear" not in dd
+                 and "critical_ratio" not in dd)
+    if radiation:
+        ratio = None  # the radiation damping replaces the default critical ratio
     ik = f"{key}.initial_pose"
     idd = _mapping(d.get("initial_pose"), ik)
     _only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
@@ -381,7 +387,10 @@ def _boat(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         keel_rate=keel_rate,
         stokes_drift=_flag(d, "stokes_drift", key, False),
         control=control,
-        derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd),
+        derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd,
+                          coefficients=coefficients,
+                          added_mass=coefficients is not None and "added_mass" not in d,
+                          radiation_damping=radiation),
     )
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
@@ -578,6 +587,34 @@ def _keel_rate(kd: Mapping[str, Any], kk: str) -> float:
     keel_model = _choice(kd, "model", kk, "damping", ("damping", "reflection"))
     return (_number(kd, "rate", kk, 1.0, 0.0, 1e3, low_open=True, unit="1/s")
             if keel_model == "reflection" else 0.0)
+
+
+def _hydrodynamics(raw: Any, key: str, base_dir: Path, com: np.ndarray
+                   ) -> HydroCoefficients | None:
+    """``hydrodynamics``: the hull's potential-flow coefficient file (``coefficients``), or None.
+
+    A relative path is taken from the scenario's directory. The file must have been solved
+    about the boat's centre of mass.
+    """
+    d = _mapping(raw, key)
+    _only(d, key, ("coefficients",))
+    if "coefficients" not in d:
+        return None
+    path = d["coefficients"]
+    if not isinstance(path, str) or not path:
+        raise ScenarioError(f"{key}.coefficients", path,
+                            "must be the path of a .npz coefficient file (boatsim hydro)")
+    full = Path(path) if Path(path).is_absolute() else base_dir / path
+    try:
+        coefficients = load_coefficients(full)
+    except HydroFileError as exc:
+        raise ScenarioError(f"{key}.coefficients", path, str(exc)) from exc
+    if not np.allclose(coefficients.center_of_mass, com, rtol=0.0, atol=1e-6):
+        raise ScenarioError(f"{key}.coefficients", path,
+                            f"was solved about the centre of mass "
+                            f"{coefficients.center_of_mass.tolist()}, the boat's is "
+                            f"{com.tolist()} (m)")
+    return coefficients
 
 
 def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:

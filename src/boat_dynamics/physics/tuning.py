@@ -15,6 +15,7 @@ import numpy as np
 
 from boat_dynamics.physics.contact import contact
 from boat_dynamics.physics.forces import forces
+from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.rigid_body import rotation_matrix
@@ -28,6 +29,7 @@ __all__ = [
     "derive",
     "equilibrium_height",
     "hydrostatic_stiffness",
+    "potential_flow_at_resonance",
 ]
 
 #: Drag coefficients [surge, sway, heave] of the default quadratic damping 1/2 rho C_d A.
@@ -150,8 +152,10 @@ def default_drag(params: BoatParams, z_eq: float) -> np.ndarray:
 def derive(params: BoatParams) -> BoatParams:
     """``params`` with what its :class:`~.model.Derivation` asks for, computed once.
 
-    The equilibrium height (flat water, upright) becomes ``control.height_offset``; then
-    ``damping_linear`` += :func:`critical_damping` of ``critical_ratio`` and, with
+    The equilibrium height (flat water, upright) becomes ``control.height_offset``; with
+    potential-flow coefficients, the added mass and radiation damping of
+    :func:`potential_flow_at_resonance`; then ``damping_linear`` += :func:`critical_damping`
+    of ``critical_ratio`` and, with
     ``quadratic``, ``damping_quadratic`` = :func:`default_drag`. Parameters with nothing to
     derive (``derive`` None) are returned as they are.
 
@@ -163,9 +167,40 @@ def derive(params: BoatParams) -> BoatParams:
         return params
     z_eq = equilibrium_height(params)
     linear, quadratic = params.damping_linear, params.damping_quadratic
+    if wanted.coefficients is not None and (wanted.added_mass or wanted.radiation_damping):
+        added, radiation = potential_flow_at_resonance(params, wanted.coefficients, z_eq)
+        if wanted.added_mass:
+            params = replace(params, added_mass=added)
+        if wanted.radiation_damping:
+            linear = linear + radiation
     if wanted.critical_ratio is not None:
         linear = linear + critical_damping(params, wanted.critical_ratio, z_eq)
     if wanted.quadratic:
         quadratic = default_drag(params, z_eq)
     return replace(params, damping_linear=linear, damping_quadratic=quadratic,
                    control=replace(params.control, height_offset=z_eq), derive=None)
+
+
+def potential_flow_at_resonance(params: BoatParams, coefficients: HydroCoefficients,
+                                z_eq: float) -> tuple[np.ndarray, np.ndarray]:
+    """(6,) added mass and (6,) linear radiation damping, constant, from a BEM solution.
+
+    Heave, roll and pitch take A_ii and B_ii at their own natural frequency, where
+    omega^2 (M_ii + A_ii(omega)) = C_ii with the boat's own stiffness
+    (:func:`hydrostatic_stiffness`) and rigid-body mass or moment: the frequency-domain
+    constant-coefficient model, exact at resonance (periods and decay rates of free
+    oscillations; Newman 1977, sec. 6.19). Surge, sway and yaw take the infinite-frequency
+    added mass and no radiation damping (no restoring force, no natural frequency). A dof
+    without positive stiffness is treated like those.
+    """
+    k = hydrostatic_stiffness(replace(params, damping_linear=np.zeros(6)), z_eq)
+    rigid = np.array([params.mass, params.inertia[0], params.inertia[1]])
+    added = np.diag(coefficients.added_mass_inf).astype(float).copy()
+    damping = np.zeros(6)
+    for dof, stiffness, inertia in zip((2, 3, 4), k, rigid, strict=True):
+        if stiffness <= 0.0:
+            continue
+        omega, a, _ = coefficients.natural(dof, float(stiffness), float(inertia))
+        added[dof] = a
+        damping[dof] = coefficients.damping_at(omega)[dof, dof]
+    return added, damping

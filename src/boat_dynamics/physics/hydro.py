@@ -1,0 +1,154 @@
+"""Linear potential-flow coefficients of a hull: added mass, radiation damping, excitation.
+
+A boundary-element solution (Capytaine; the ``hydro`` reference script) of one hull floating
+at rest: per wave frequency omega, the 6 x 6 added mass A(omega) and radiation damping
+B(omega) about the centre of mass, and per frequency and wave direction the complex
+excitation forces per metre of wave amplitude, Froude-Krylov and diffraction apart. Stored as
+a NumPy ``.npz`` of plain arrays (no pickled objects); read with :func:`load_coefficients`.
+
+Conventions (those of Capytaine 3.0.0, kept so that a solver's file is read unchanged): dof
+order surge, sway, heave, roll, pitch, yaw (body axes, FLU); forces in N/m and moments in
+N m/m of wave amplitude; a wave travelling toward ``direction`` (rad, counter-clockwise from
++x) with elevation Re[a e^{-i omega t}] at the origin gives the force Re[a X e^{-i omega t}].
+
+Sources: Newman, "Marine Hydrodynamics" (1977), ch. 6; Falnes, "Ocean Waves and Oscillating
+Systems" (2002), ch. 5; the Capytaine documentation (Ancellin & Dias 2019).
+"""
+
+from __future__ import annotations
+
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["DOFS", "HydroCoefficients", "HydroFileError", "load_coefficients"]
+
+#: The rigid-body degrees of freedom, in the order of every 6-vector and 6 x 6 matrix.
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+class HydroFileError(ValueError):
+    """A coefficient file that cannot be used: unreadable, or an array missing or malformed."""
+
+
+@dataclass(frozen=True)
+class HydroCoefficients:
+    """One hull's potential-flow coefficients at its floating position.
+
+    Attributes:
+        omega: (W,) rad/s, increasing.
+        added_mass: (W, 6, 6) kg, kg m, kg m^2.
+        radiation_damping: (W, 6, 6) N s/m, N s, N m s.
+        added_mass_inf: (6, 6), the infinite-frequency limit.
+        directions: (D,) rad, wave directions of the excitation.
+        froude_krylov: (W, D, 6) complex, N/m and N m/m.
+        diffraction: (W, D, 6) complex, N/m and N m/m.
+        hydrostatic_stiffness: (6, 6) N/m, N, N m (the solver's, for checks).
+        inertia_matrix: (6, 6) the rigid-body mass matrix the solver was given.
+        center_of_mass: (3,) m, body frame, the rotation centre of the dofs.
+    """
+
+    omega: np.ndarray
+    added_mass: np.ndarray
+    radiation_damping: np.ndarray
+    added_mass_inf: np.ndarray
+    directions: np.ndarray
+    froude_krylov: np.ndarray
+    diffraction: np.ndarray
+    hydrostatic_stiffness: np.ndarray
+    inertia_matrix: np.ndarray
+    center_of_mass: np.ndarray
+
+    def added_mass_at(self, omega: float) -> np.ndarray:
+        """(6, 6) A at ``omega`` (linear in omega between grid points, clamped at the ends)."""
+        return _interp(self.omega, self.added_mass, omega)
+
+    def damping_at(self, omega: float) -> np.ndarray:
+        """(6, 6) B at ``omega`` (linear in omega between grid points, clamped at the ends)."""
+        return _interp(self.omega, self.radiation_damping, omega)
+
+    def excitation_at(self, omega: float, direction: float, froude_krylov: bool = True,
+                      diffraction: bool = True) -> np.ndarray:
+        """(6,) complex excitation per metre of amplitude at ``omega`` and ``direction``.
+
+        Linear in omega and in the direction between grid points (directions taken modulo
+        2 pi on the grid's span; outside it, the nearest grid direction).
+        """
+        parts = []
+        if froude_krylov:
+            parts.append(self.froude_krylov)
+        if diffraction:
+            parts.append(self.diffraction)
+        table = sum(parts)
+        by_direction = _interp(self.omega, table, omega)  # (D, 6)
+        d = np.mod(direction - self.directions[0], 2 * np.pi) + self.directions[0]
+        return _interp(self.directions, by_direction, d)
+
+    def natural(self, dof: int, stiffness: float, inertia: float) -> tuple[float, float, float]:
+        """(omega_n rad/s, A_ii(omega_n), damping ratio) of one dof with its added mass.
+
+        Solves omega = sqrt(C / (M + A(omega))) by fixed-point iteration on the grid's linear
+        interpolation; the damping ratio is B / (2 sqrt(C (M + A))) there.
+        """
+        omega = float(np.sqrt(stiffness / inertia))
+        for _ in range(200):
+            added = self.added_mass_at(omega)[dof, dof]
+            new = float(np.sqrt(stiffness / (inertia + added)))
+            if abs(new - omega) <= 1e-12 * omega:
+                break
+            omega = new
+        added = float(self.added_mass_at(omega)[dof, dof])
+        zeta = float(self.damping_at(omega)[dof, dof]
+                     / (2.0 * np.sqrt(stiffness * (inertia + added))))
+        return omega, added, zeta
+
+
+def _interp(grid: np.ndarray, table: np.ndarray, x: float) -> np.ndarray:
+    """table[i] linearly interpolated along its first axis at x on ``grid`` (clamped)."""
+    x = float(np.clip(x, grid[0], grid[-1]))
+    i = int(np.clip(np.searchsorted(grid, x) - 1, 0, grid.shape[0] - 2))
+    w = (x - grid[i]) / (grid[i + 1] - grid[i])
+    return (1.0 - w) * table[i] + w * table[i + 1]
+
+
+_SHAPES = {
+    "omega": ("W",), "added_mass": ("W", 6, 6), "radiation_damping": ("W", 6, 6),
+    "added_mass_inf": (6, 6), "directions": ("D",), "froude_krylov": ("W", "D", 6),
+    "diffraction": ("W", "D", 6), "hydrostatic_stiffness": (6, 6), "inertia_matrix": (6, 6),
+    "center_of_mass": (3,),
+}
+
+
+def load_coefficients(path: str | Path) -> HydroCoefficients:
+    """Read a coefficient file (``.npz``), checking every array's shape and values.
+
+    Raises:
+        HydroFileError: naming the file, the array and what was wrong.
+    """
+    p = Path(path)
+    try:
+        with np.load(p, allow_pickle=False) as data:
+            arrays = {name: np.asarray(data[name]) for name in _SHAPES if name in data.files}
+    except (OSError, ValueError, zipfile.BadZipFile) as exc:
+        raise HydroFileError(f"{p}: not a readable .npz coefficient file ({exc})") from exc
+    sizes: dict[str, int] = {}
+    for name, shape in _SHAPES.items():
+        if name not in arrays:
+            raise HydroFileError(f"{p}: array {name!r} is missing")
+        a = arrays[name]
+        if a.ndim != len(shape):
+            raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
+        for size, want in zip(a.shape, shape, strict=True):
+            if isinstance(want, str):
+                if sizes.setdefault(want, size) != size:
+                    raise HydroFileError(f"{p}: {name} has shape {a.shape}: {want} = {size}, "
+                                         f"but {sizes[want]} elsewhere")
+            elif size != want:
+                raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
+        if not np.all(np.isfinite(a)):
+            raise HydroFileError(f"{p}: {name} has non-finite values")
+    if sizes["W"] < 2 or np.any(np.diff(arrays["omega"]) <= 0.0) or arrays["omega"][0] <= 0.0:
+        raise HydroFileError(f"{p}: omega must hold at least two increasing values > 0")
+    return HydroCoefficients(**{name: arrays[name] for name in _SHAPES})

@@ -1,0 +1,148 @@
+"""Potential-flow coefficients: the file reader, and boatsim against Capytaine's solution.
+
+The reference (tests/data/hydro/box_4x2x1_d0.5.npz) is Capytaine 3.0.0's solution for the
+default 4 x 2 x 1 m box floating at 0.5 m draft with its centre of mass 0.2 m below the
+reference point, made by tests/data/hydro/hydro_reference.py (see its docstring for the mesh
+and the conventions).
+"""
+
+import math
+from itertools import pairwise
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from boat_dynamics.physics.hydro import HydroFileError, load_coefficients
+
+DATA = Path(__file__).resolve().parents[2] / "data" / "hydro"
+BOX = DATA / "box_4x2x1_d0.5.npz"
+
+
+def _write(path, **changes):
+    with np.load(BOX) as data:
+        arrays = {k: data[k] for k in data.files}
+    arrays.update(changes)
+    for k in [k for k, v in arrays.items() if v is None]:
+        del arrays[k]
+    np.savez(path, **arrays)
+    return path
+
+
+@pytest.mark.parametrize(("changes", "fragment"), [
+    ({"added_mass": None}, "array 'added_mass' is missing"),
+    ({"omega": np.array([1.0])}, "but 1 elsewhere"),
+    ({"added_mass_inf": np.zeros((6, 5))}, "added_mass_inf has shape (6, 5), expected (6, 6)"),
+    ({"center_of_mass": np.array([0.0, np.nan, 0.0])}, "center_of_mass has non-finite values"),
+])
+def test_a_malformed_coefficient_file_is_refused_naming_the_array(tmp_path, changes, fragment):
+    with pytest.raises(HydroFileError) as err:
+        load_coefficients(_write(tmp_path / "bad.npz", **changes))
+    assert fragment in str(err.value)
+
+
+def test_a_file_that_is_not_npz_is_refused(tmp_path):
+    bad = tmp_path / "bad.npz"
+    bad.write_bytes(b"\x00not a zip")
+    with pytest.raises(HydroFileError, match=r"not a readable \.npz coefficient file"):
+        load_coefficients(bad)
+
+
+def _box(**extra):
+    from boat_dynamics.physics.pipeline import init_scenario
+    from boat_dynamics.physics.scenario import parse_scenario
+
+    boat = {"center_of_mass": [0.0, 0.0, -0.2], **extra}
+    return init_scenario(parse_scenario({"boats": [boat]})).boats[0]
+
+
+def test_boatsim_hydrostatics_equal_capytaines():
+    from boat_dynamics.physics.tuning import equilibrium_height, hydrostatic_stiffness
+
+    ref = load_coefficients(BOX).hydrostatic_stiffness
+    params = _box().params
+    k = hydrostatic_stiffness(params, equilibrium_height(params))
+    np.testing.assert_allclose(k, [ref[2, 2], ref[3, 3], ref[4, 4]], rtol=1e-6)
+
+
+@pytest.mark.parametrize("direction_deg", [0, 45, 90, 135, 180])
+@pytest.mark.parametrize(("index", "tolerance"), [(3, 0.03), (8, 0.03), (13, 0.03), (18, 0.05)])
+def test_froude_krylov_excitation_equals_capytaines(direction_deg, index, tolerance):
+    # boatsim's pressure model against Capytaine's Froude-Krylov force, amplitude and phase,
+    # all six dofs about the centre of mass, at wavelengths 10.4, 4.1, 1.9 L (3 %) and 0.46 L
+    # (5 %: the 4096-triangle cap leaves 6.6 panels per wavelength there).
+    from boat_dynamics.physics.boat import BoatInputs, evaluate_forces, initial_state
+    from boat_dynamics.physics.pipeline import init_scenario
+    from boat_dynamics.physics.scenario import parse_scenario
+    from ocean_sim.physics.waves import WaveComponent, WaveField
+
+    ref = load_coefficients(BOX)
+    omega = float(ref.omega[index])
+    d = int(np.argmin(np.abs(ref.directions - math.radians(direction_deg))))
+    a = 0.005
+    sea = WaveField((WaveComponent(a, 2 * math.pi * 9.81 / omega**2, math.radians(direction_deg),
+                                   0.0, 0.0),))
+    sc = parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
+                                    "buoyancy": {"pressure": "froude_krylov"}}]})
+    from dataclasses import replace
+
+    params = init_scenario(replace(sc, sea=sea)).boats[0].params
+    times = np.arange(24) * (2 * math.pi / omega) / 24
+    rows = [np.concatenate([(f := evaluate_forces(params, initial_state(params, [0, 0, 0], t=t),
+                                                  BoatInputs(), sea).buoyancy).force,
+                            f.torque]) for t in times]
+    # x(t) = Re[X e^{-i omega t}]: X = (2 / n) sum x(t) e^{+i omega t}, per metre of amplitude
+    measured = 2 * (np.exp(1j * omega * times) @ np.array(rows)) / len(times) / a
+    expected = ref.froude_krylov[index, d]
+    assert np.abs(measured - expected).max() <= tolerance * np.abs(expected).max()
+
+
+@pytest.mark.parametrize(("dof", "pose", "index"), [
+    ("heave", {"position": [0.0, 0.0, 0.05]}, 0),
+    ("roll", {"roll_deg": 3.0}, 1),
+    ("pitch", {"pitch_deg": 2.0}, 2),
+])
+def test_free_decay_has_the_potential_flow_period_and_damping(dof, pose, index):
+    # With the coefficient file, boatsim's added mass and radiation damping are those of the
+    # natural frequency: the free decay (simulated, flat water) must show Capytaine's natural
+    # period (added mass at resonance) within 3 % and its radiation damping ratio within 20 %
+    # (the issue's bounds). Without the file the box is 19-34 % short (no added mass).
+    from boat_dynamics.physics.boat import BoatInputs, reference_pose, step
+    from boat_dynamics.physics.rigid_body import quat_to_euler
+    from ocean_sim.physics.waves import WaveField
+
+    with np.load(BOX) as data:  # computed by the reference script itself
+        period, zeta = float(data["natural_period_wet"][index]), float(data["damping_ratio"][index])
+    boat = _box(hydrodynamics={"coefficients": str(BOX)}, damping={"quadratic": [0] * 6},
+                initial_pose=pose)
+    params, state = boat.params, boat.initial
+    dt, values, times = 0.002, [], []
+    for _ in range(int(12.0 / dt)):
+        ref, q = reference_pose(params, state)
+        values.append(ref[2] - params.control.height_offset if dof == "heave"
+                      else quat_to_euler(q)[{"roll": 0, "pitch": 1}[dof]])
+        times.append(state.t)
+        state = step(params, state, BoatInputs(), WaveField(), dt)
+    x, t = np.array(values), np.array(times)
+    up = np.flatnonzero((x[:-1] < 0.0) & (x[1:] >= 0.0))
+    crossings = t[up] - x[up] / (x[up + 1] - x[up]) * dt
+    peaks = np.array([x[i:j].max() for i, j in pairwise(up)])
+    decrement = np.mean(np.log(peaks[:-1] / peaks[1:]))
+    measured_zeta = decrement / math.sqrt(4 * math.pi**2 + decrement**2)
+    damped = period / math.sqrt(1 - zeta**2)
+    assert len(up) >= 4
+    assert np.diff(crossings).mean() == pytest.approx(damped, rel=0.03)
+    assert measured_zeta == pytest.approx(zeta, rel=0.2)
+
+
+def test_a_coefficient_file_of_another_centre_of_mass_or_a_bad_file_is_refused(tmp_path):
+    from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+
+    with pytest.raises(ScenarioError, match=r"solved about the centre of mass \[0.0, 0.0, -0.2\]"):
+        parse_scenario({"boats": [{"hydrodynamics": {"coefficients": str(BOX)}}]})
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
+                                   "hydrodynamics": {"coefficients": "missing.npz"}}]},
+                       base_dir=tmp_path)
+    assert err.value.key == "boats[0].hydrodynamics.coefficients"
+    assert "not a readable .npz" in err.value.allowed
