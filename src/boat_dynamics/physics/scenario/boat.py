@@ -1,0 +1,245 @@
+"""One boat of ``boats``: its blocks read in the order of the keys, into a :class:`BoatSpec`."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from boat_dynamics.physics.commands import CommandScript
+from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.physics.hydro import HydroCoefficients, HydroFileError, load_coefficients
+from boat_dynamics.physics.model import BoatParams, BoatState, Derivation, initial_state
+from boat_dynamics.physics.rigid_body import inertia_tensor
+from boat_dynamics.physics.scenario.models import (
+    buoyancy_block,
+    control_block,
+    keel_block,
+    propulsion_block,
+    rudder_block,
+)
+from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
+from boat_dynamics.physics.scenario.specs import BoatSpec, ScenarioError, SimulationSettings
+
+#: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
+DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
+
+
+_BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
+              "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
+              "commands", "min_wavelength", "keel", "stokes_drift", "control",
+              "inertia_scale", "inertia_products", "hydrodynamics")
+
+
+def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
+          base_dir: Path) -> BoatSpec:
+    """One boat of ``boats``: each block read and checked in turn, in the order of the keys."""
+    d = mapping(raw, key)
+    only(d, key, _BOAT_KEYS)
+    name = _boat_name(d, key, lone)
+    hull, mesh = _hull(mapping(d.get("hull"), f"{key}.hull"), f"{key}.hull", base_dir)
+    mass, com, inertia, products = _mass_properties(d, key, sim, mesh)
+    buoyancy = buoyancy_block(mapping(d.get("buoyancy"), f"{key}.buoyancy"), f"{key}.buoyancy",
+                         hull, mesh)
+    dk = f"{key}.damping"
+    dd = mapping(d.get("damping"), dk)
+    linear, quadratic, decay, ratio = _damping(dd, dk)
+    added = vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0)
+    propulsion = propulsion_block(mapping(d.get("propulsion"), f"{key}.propulsion"),
+                             f"{key}.propulsion", hull)
+    rudder = rudder_block(mapping(d.get("rudder"), f"{key}.rudder"), f"{key}.rudder", hull)
+    keel_rate = keel_block(mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel")
+    control = control_block(d, key)
+    coefficients = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics", base_dir, com)
+    radiation = (coefficients is not None and "linear" not in dd
+                 and "critical_ratio" not in dd)
+    if radiation:
+        ratio = None  # the radiation damping replaces the default critical ratio
+    ik = f"{key}.initial_pose"
+    idd = mapping(d.get("initial_pose"), ik)
+    only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
+    params = BoatParams(
+        hull=hull, mass=mass, center_of_mass=com, inertia=inertia, inertia_products=products,
+        buoyancy=buoyancy,
+        damping_linear=linear, damping_quadratic=quadratic, damping_decay=decay,
+        added_mass=added, propulsion=propulsion, rudder=rudder,
+        water_density=sim.water_density, gravity=sim.gravity,
+        min_wavelength=number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
+        wave_precision=sim.wave_precision,
+        keel_rate=keel_rate,
+        stokes_drift=flag(d, "stokes_drift", key, False),
+        control=control,
+        derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd,
+                          coefficients=coefficients,
+                          added_mass=coefficients is not None and "added_mass" not in d,
+                          radiation_damping=radiation),
+    )
+    return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
+                    commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
+
+
+def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
+    """``name``: a ROS name, required unless the boat is alone ("" = root namespace)."""
+    name = d.get("name", "" if lone else None)
+    if name is None:
+        raise ScenarioError(f"{key}.name", None, "every boat of a multi-boat scenario needs a name")
+    if not isinstance(name, str) or (name and not name.replace("_", "a").isalnum()) \
+            or (name and name[0].isdigit()):
+        raise ScenarioError(f"{key}.name", name,
+                            "must be a ROS name: letters, digits and _, not starting with a digit")
+    return name
+
+
+def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, HullMesh]:
+    """``hull``: a box (``length``, ``beam``, ``height``, ``subdivisions``) or a mesh file."""
+    only(hd, hk, ("type", "length", "beam", "height", "subdivisions", "path", "scale"))
+    hull_type = choice(hd, "type", hk, "box", ("box", "mesh"))
+    if hull_type == "box":
+        for extra in ("path", "scale"):
+            if extra in hd:
+                raise ScenarioError(f"{hk}.{extra}", hd[extra], "only for hull type mesh")
+        hull = BoxHull(
+            length=number(hd, "length", hk, 4.0, 0.0, 1000.0, low_open=True, unit="m"),
+            beam=number(hd, "beam", hk, 2.0, 0.0, 1000.0, low_open=True, unit="m"),
+            height=number(hd, "height", hk, 1.0, 0.0, 1000.0, low_open=True, unit="m"),
+        )
+        subdivisions = hd.get("subdivisions", 1)
+        if (isinstance(subdivisions, bool) or not isinstance(subdivisions, int)
+                or not 1 <= subdivisions <= 64):
+            raise ScenarioError(f"{hk}.subdivisions", subdivisions,
+                                "must be an integer in [1, 64] (quads per box face edge)")
+        return hull, box_mesh(hull, subdivisions)
+    for extra in ("length", "beam", "height", "subdivisions"):
+        if extra in hd:
+            raise ScenarioError(f"{hk}.{extra}", hd[extra],
+                                "only for hull type box (a mesh has its own size)")
+    path = hd.get("path")
+    if not isinstance(path, str) or not path:
+        raise ScenarioError(f"{hk}.path", path, "must be the path of an STL or OBJ file")
+    full = Path(path) if Path(path).is_absolute() else base_dir / path
+    scale = number(hd, "scale", hk, 1.0, 0.0, 1e3, low_open=True)
+    try:
+        mesh = load_mesh(str(full), scale)
+    except HullMeshError as exc:
+        raise ScenarioError(f"{hk}.path", path, str(exc)) from exc
+    return BoxHull(*(float(e) for e in mesh.extents)), mesh
+
+
+def _mass_properties(d: Mapping[str, Any], key: str, sim: SimulationSettings, mesh: HullMesh
+                     ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    """The mass properties: kg, (3,) m, (3,) kg m^2 and (3,) kg m^2.
+
+    From ``mass`` (or ``density``), ``center_of_mass``, ``inertia`` (times ``inertia_scale``)
+    and ``inertia_products``; the solid hull's where not given.
+    """
+    volume = mesh.volume
+    if "mass" in d and "density" in d:
+        raise ScenarioError(f"{key}.density", d["density"],
+                            "give either mass or density, not both (the other is derived)")
+    if "density" in d:
+        density = number(d, "density", key, 0.0, 0.0, math.inf, low_open=True, unit="kg/m^3")
+        mass = density * volume
+    else:
+        mass = number(d, "mass", key, 0.5 * sim.water_density * volume, 0.0, math.inf,
+                       low_open=True, unit="kg")
+    com = vector(d, "center_of_mass", key, 3, [0.0, 0.0, 0.0])
+    inertia_raw = d.get("inertia")
+    inertia = (mesh.solid_inertia(mass) if inertia_raw is None
+               else vector(d, "inertia", key, 3, [1.0, 1.0, 1.0], low=0.0))
+    if np.any(inertia <= 0.0):
+        raise ScenarioError(f"{key}.inertia", inertia_raw, "every moment must be > 0 (kg m^2)")
+    inertia = inertia * vector(d, "inertia_scale", key, 3, [1.0, 1.0, 1.0], low=0.01)
+    products_raw = d.get("inertia_products")
+    products = (vector(d, "inertia_products", key, 3, [0.0, 0.0, 0.0])
+                if products_raw is not None or inertia_raw is not None
+                else mesh.inertia_products(mass))
+    products[np.abs(products) < 1e-9 * inertia.max()] = 0.0  # rounding of symmetric hulls
+    if np.linalg.eigvalsh(inertia_tensor(inertia, products)).min() <= 0.0:
+        raise ScenarioError(f"{key}.inertia_products", products_raw,
+                            "the inertia tensor must be positive definite (products of inertia "
+                            "too large for the moments)")
+    return mass, com, inertia, products
+
+
+def _damping(dd: Mapping[str, Any], dk: str
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    """``damping``: (6,) linear, quadratic and decay, and the critical ratios to add.
+
+    The ratios are [heave, roll, pitch]; None adds none. Default: DEFAULT_CRITICAL_RATIO when
+    ``linear`` is not given.
+    """
+    only(dd, dk, ("linear", "quadratic", "critical_ratio", "decay"))
+    linear = vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
+    decay = vector(dd, "decay", dk, 6, [0.0] * 6, low=0.0)
+    quadratic = vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0)
+    ratio_default = None if "linear" in dd else list(DEFAULT_CRITICAL_RATIO)
+    ratio_raw = dd.get("critical_ratio", ratio_default)
+    ratio = (None if ratio_raw is None
+             else vector({"critical_ratio": ratio_raw}, "critical_ratio", dk, 3, [0.0] * 3,
+                          low=0.0))
+    return linear, quadratic, decay, ratio
+
+
+def _hydrodynamics(raw: Any, key: str, base_dir: Path, com: np.ndarray
+                   ) -> HydroCoefficients | None:
+    """``hydrodynamics``: the hull's potential-flow coefficient file (``coefficients``), or None.
+
+    A relative path is taken from the scenario's directory. The file must have been solved
+    about the boat's centre of mass.
+    """
+    d = mapping(raw, key)
+    only(d, key, ("coefficients",))
+    if "coefficients" not in d:
+        return None
+    path = d["coefficients"]
+    if not isinstance(path, str) or not path:
+        raise ScenarioError(f"{key}.coefficients", path,
+                            "must be the path of a .npz coefficient file (boatsim hydro)")
+    full = Path(path) if Path(path).is_absolute() else base_dir / path
+    try:
+        coefficients = load_coefficients(full)
+    except HydroFileError as exc:
+        raise ScenarioError(f"{key}.coefficients", path, str(exc)) from exc
+    if not np.allclose(coefficients.center_of_mass, com, rtol=0.0, atol=1e-6):
+        raise ScenarioError(f"{key}.coefficients", path,
+                            f"was solved about the centre of mass "
+                            f"{coefficients.center_of_mass.tolist()}, the boat's is "
+                            f"{com.tolist()} (m)")
+    return coefficients
+
+
+def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
+    """``initial_pose``: the state at rest there (hull reference point, degrees).
+
+    At rest: :func:`boat_dynamics.physics.pipeline.init` sets it afloat in the waves.
+    """
+    return initial_state(
+        params,
+        vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
+        roll=math.radians(number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),
+        pitch=math.radians(number(idd, "pitch_deg", ik, 0.0, -90.0, 90.0, unit="deg")),
+        yaw=math.radians(number(idd, "yaw_deg", ik, 0.0, -360.0, 360.0, unit="deg")),
+    )
+
+
+def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
+    if raw is None:
+        return None
+    if not isinstance(raw, list) or not raw:
+        raise ScenarioError(key, raw, "must be a non-empty list of {t, thrust, rudder}")
+    times, throttles, rudders = [], [], []
+    for i, entry in enumerate(raw):
+        ek = f"{key}[{i}]"
+        ed = mapping(entry, ek)
+        only(ed, ek, ("t", "thrust", "rudder"))
+        t = number(ed, "t", ek, 0.0, 0.0, unit="s")
+        if times and t <= times[-1]:
+            raise ScenarioError(f"{ek}.t", t,
+                                f"must be later than the previous entry ({times[-1]})")
+        times.append(t)
+        throttles.append(number(ed, "thrust", ek, 0.0, -1.0, 1.0))
+        rudders.append(number(ed, "rudder", ek, 0.0, -max_rudder, max_rudder, unit="rad"))
+    return CommandScript(tuple(times), tuple(throttles), tuple(rudders))

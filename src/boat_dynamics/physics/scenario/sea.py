@@ -1,0 +1,133 @@
+"""The ``simulation`` and ``ocean`` sections (explicit components and generated spectra)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from boat_dynamics.physics.scenario.read import choice, mapping, number, only
+from boat_dynamics.physics.scenario.specs import ScenarioError, SimulationSettings
+from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
+from ocean_sim.physics.waves import (
+    PRECISIONS,
+    InvalidSeaStateError,
+    WaveComponent,
+    WaveField,
+)
+
+
+def simulation_block(raw: Any) -> SimulationSettings:
+    """The ``simulation:`` block."""
+    key = "simulation"
+    d = mapping(raw, key)
+    only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
+                   "seed", "gravity", "water_density", "cmd_timeout", "substeps",
+                   "wave_precision"))
+    rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
+    pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
+    diag = number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
+    realtime = d.get("realtime", True)
+    if not isinstance(realtime, bool):
+        raise ScenarioError(f"{key}.realtime", realtime, "must be true or false")
+    duration = d.get("duration")
+    if duration is not None:
+        duration = number(d, "duration", key, 0.0, 0.0, math.inf, low_open=True, unit="s")
+    substeps = d.get("substeps", 1)
+    if isinstance(substeps, bool) or not isinstance(substeps, int) or not 1 <= substeps <= 100:
+        raise ScenarioError(f"{key}.substeps", substeps, "must be an integer in [1, 100]")
+    seed = d.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ScenarioError(f"{key}.seed", seed, "must be an integer >= 0")
+    return SimulationSettings(
+        rate_hz=rate,
+        publish_rate_hz=pub,
+        diagnostics_rate_hz=diag,
+        realtime=realtime,
+        duration=duration,
+        seed=seed,
+        gravity=number(d, "gravity", key, GRAVITY, 0.0, 100.0, low_open=True, unit="m/s^2"),
+        water_density=number(d, "water_density", key, WATER_DENSITY, 0.0, 1e5, low_open=True,
+                              unit="kg/m^3"),
+        cmd_timeout=number(d, "cmd_timeout", key, 1.0, 0.0, 3600.0, low_open=True, unit="s"),
+        substeps=substeps,
+        wave_precision=choice(d, "wave_precision", key, "float32", PRECISIONS),
+    )
+
+
+def ocean_block(raw: Any, sim: SimulationSettings) -> WaveField:
+    """The ``ocean:`` block: explicit components and/or a generated spectrum."""
+    key = "ocean"
+    d = mapping(raw, key)
+    only(d, key, ("depth", "components", "spectrum"))
+    depth = number(d, "depth", key, math.inf, 0.0, math.inf, low_open=True, unit="m",
+                    allow_inf=True)
+    generated = _spectrum(d.get("spectrum"), sim, depth)
+    comps_raw = d.get("components") or []
+    if not isinstance(comps_raw, list):
+        raise ScenarioError(f"{key}.components", comps_raw, "must be a list of components")
+    comps = []
+    for i, c in enumerate(comps_raw):
+        ck = f"{key}.components[{i}]"
+        cd = mapping(c, ck)
+        only(cd, ck, ("amplitude", "wavelength", "direction_deg", "steepness", "phase"))
+        comps.append(WaveComponent(
+            amplitude=number(cd, "amplitude", ck, 0.0, 0.0, unit="m"),
+            wavelength=number(cd, "wavelength", ck, 10.0, 0.0, low_open=True, unit="m"),
+            direction=math.radians(number(cd, "direction_deg", ck, 0.0, unit="deg")),
+            steepness=number(cd, "steepness", ck, 0.0, 0.0, 1.0),
+            phase=number(cd, "phase", ck, 0.0, unit="rad"),
+        ))
+    try:
+        return WaveField(tuple(comps) + generated, gravity=sim.gravity, depth=depth)
+    except InvalidSeaStateError as exc:
+        if generated and exc.key == "components":
+            raise ScenarioError(key, exc.value, "components and spectrum together: "
+                                + exc.allowed) from exc
+        raise ScenarioError(f"{key}.{exc.key}", exc.value, exc.allowed) from exc
+
+
+_SPECTRUM_KEYS = ("type", "significant_height", "peak_period", "beaufort", "direction_deg",
+                  "spreading", "components", "gamma", "steepness")
+
+
+def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComponent, ...]:
+    """Components generated from ``ocean.spectrum`` (empty if absent)."""
+    if raw is None:
+        return ()
+    key = "ocean.spectrum"
+    d = mapping(raw, key)
+    only(d, key, _SPECTRUM_KEYS)
+    kind = choice(d, "type", key, "jonswap", SPECTRUM_TYPES)
+    spreading = d.get("spreading", 10.0)
+    if spreading is not None:
+        spreading = number(d, "spreading", key, 10.0, 0.0, 1000.0)
+    n = d.get("components", 16)
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 1000:
+        raise ScenarioError(f"{key}.components", n, "must be an integer in [1, 1000]")
+    direction = math.radians(number(d, "direction_deg", key, 0.0, -360.0, 360.0, unit="deg"))
+    steepness = number(d, "steepness", key, 0.5, 0.0, 1.0)
+    try:
+        if "beaufort" in d:
+            for other in ("significant_height", "peak_period", "gamma"):
+                if other in d:
+                    raise ScenarioError(f"{key}.{other}", d[other],
+                                        "give either beaufort or significant_height/peak_period")
+            if kind != "pierson_moskowitz" and "type" in d:
+                raise ScenarioError(f"{key}.type", kind,
+                                    "a beaufort sea is pierson_moskowitz (fully developed)")
+            sea = beaufort_sea(d["beaufort"], direction, spreading, n, steepness, sim.seed,
+                               sim.gravity, depth)
+        else:
+            spec = SpectrumSpec(
+                type=kind,
+                significant_height=number(d, "significant_height", key, 1.0, 0.0, 30.0,
+                                           unit="m"),
+                peak_period=number(d, "peak_period", key, 6.0, 0.5, 40.0, unit="s"),
+                direction=direction, spreading=spreading, components=n,
+                gamma=number(d, "gamma", key, 3.3, 1.0, 7.0), steepness=steepness,
+            )
+            sea = generate_sea(spec, seed=sim.seed, gravity=sim.gravity, depth=depth)
+    except InvalidSeaStateError as exc:
+        raise ScenarioError(f"ocean.{exc.key}", exc.value, exc.allowed) from exc
+    return sea.components

@@ -1,0 +1,88 @@
+"""What a scenario file is read into: frozen specs, and the error that names a bad key."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from boat_dynamics.physics.commands import CommandScript
+from boat_dynamics.physics.model import BoatParams, BoatState
+from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.physics.waves import (
+    Precision,
+    WaveField,
+)
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot be run.
+
+    Attributes:
+        key: path of the offending key, e.g. ``boats[0].mass``.
+        value: the value found.
+        allowed: what would have been accepted.
+    """
+
+    def __init__(self, key: str, value: object, allowed: str) -> None:
+        self.key = key
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{key}: {value!r} is not allowed: {allowed}")
+
+
+@dataclass(frozen=True)
+class SimulationSettings:
+    """The ``simulation:`` block.
+
+    Attributes:
+        rate_hz: physics steps per simulated second.
+        publish_rate_hz: odom / pose / twist messages per simulated second.
+        diagnostics_rate_hz: wrench/* messages per simulated second.
+        realtime: pace the simulation to the wall clock (False = as fast as possible).
+        duration: s of simulated time to run, None = until stopped.
+        seed: random seed (generated sea states).
+        gravity: m/s^2.
+        water_density: kg/m^3.
+        cmd_timeout: s without a cmd_thrust message after which thrust is set to zero.
+        substeps: physics substeps per step.
+        wave_precision: precision of the boats' surface queries, ``float32`` (fast; heights
+            within about 1e-5 m of float64) or ``float64``.
+    """
+
+    rate_hz: float = 100.0
+    publish_rate_hz: float = 50.0
+    diagnostics_rate_hz: float = 10.0
+    realtime: bool = True
+    duration: float | None = None
+    seed: int = 0
+    gravity: float = GRAVITY
+    water_density: float = WATER_DENSITY
+    cmd_timeout: float = 1.0
+    substeps: int = 1
+    wave_precision: Precision = "float32"
+
+
+@dataclass(frozen=True)
+class BoatSpec:
+    """One boat of a scenario.
+
+    Attributes:
+        name: the boat's namespace; "" for a lone boat in the root namespace.
+        params: its physical parameters.
+        initial: its initial state.
+        commands: scripted commands, or None to follow the command topics.
+    """
+
+    name: str
+    params: BoatParams
+    initial: BoatState
+    commands: CommandScript | None
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A whole run: settings, the sea and the boats."""
+
+    simulation: SimulationSettings
+    sea: WaveField
+    boats: tuple[BoatSpec, ...]
+    source: str = "<scenario>"
