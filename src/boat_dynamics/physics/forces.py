@@ -14,6 +14,7 @@ import numpy as np
 from boat_dynamics.physics.buoyancy import sample_point_group
 from boat_dynamics.physics.contact import Contact, GroupContact
 from boat_dynamics.physics.damping import damping
+from boat_dynamics.physics.diffraction import diffraction_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
 from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
 from boat_dynamics.physics.propulsion import thrust
@@ -59,7 +60,25 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     weight = Wrench((system.mass * system.gravity)[:, None] * -rot[:, 2, :], np.zeros((b, 3)))
     buoy, drag = Wrench(*buoy), Wrench(*drag)
     total = buoy + damp + drag + push + steer + weight
-    return FleetForces(buoy, damp, drag, push, steer, weight, total), normals_ref
+    scattered = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
+    if system.diffracting:  # potential-flow coefficients: rare, per boat
+        scattered = _diffraction(system, state, contact)
+        total = total + scattered
+    return (FleetForces(buoy, damp, drag, push, steer, scattered, weight, total),
+            normals_ref)
+
+
+def _diffraction(system: System, state: FleetState, contact: Contact) -> Wrench:
+    """(B, 3) diffraction force and torque (body frames) of the boats that have coefficients."""
+    force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
+    for i in system.diffracting:
+        params = system.params[i]
+        rot = contact.rotation[i]
+        ref = state.position[i] - rot @ params.center_of_mass
+        force[i], torque[i] = diffraction_wrench(
+            params.hydro, contact.sea.filtered(params.min_wavelength), ref[:2],
+            float(np.arctan2(rot[1, 0], rot[0, 0])), state.t)
+    return Wrench(force, torque)
 
 
 def _at_reference(system: System, contact: Contact) -> tuple[np.ndarray, np.ndarray]:

@@ -86,6 +86,16 @@ class HydroCoefficients:
         d = np.mod(direction - self.directions[0], 2 * np.pi) + self.directions[0]
         return _interp(self.directions, by_direction, d)
 
+    def diffraction_at(self, omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """(M, 6) complex diffraction forces per metre of amplitude for M (omega, direction).
+
+        Bilinear in omega (clamped to the grid) and direction (modulo 2 pi; the grid's
+        directions are extended by symmetry when they span only 0..pi: a hull symmetric
+        about its centreplane feels a wave from -beta as one from beta, mirrored: sway, roll
+        and yaw change sign).
+        """
+        return _bilinear(self.omega, self.directions, self.diffraction, omega, direction)
+
     def natural(self, dof: int, stiffness: float, inertia: float) -> tuple[float, float, float]:
         """(omega_n rad/s, A_ii(omega_n), damping ratio) of one dof with its added mass.
 
@@ -103,6 +113,30 @@ class HydroCoefficients:
         zeta = float(self.damping_at(omega)[dof, dof]
                      / (2.0 * np.sqrt(stiffness * (inertia + added))))
         return omega, added, zeta
+
+
+#: The dofs that change sign when a wave's direction is mirrored about the x axis.
+_MIRRORED = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
+
+
+def _bilinear(omegas: np.ndarray, directions: np.ndarray, table: np.ndarray,
+              omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """(M, 6) of a (W, D, 6) table at M points (omega, direction), bilinear."""
+    w = np.clip(np.asarray(omega, dtype=float), omegas[0], omegas[-1])
+    beta = np.mod(np.asarray(direction, dtype=float), 2 * np.pi)
+    sign = np.ones((beta.shape[0], 1))
+    if directions[-1] <= np.pi + 1e-9:  # a half circle: mirror the other half
+        mirrored = beta > np.pi
+        beta = np.where(mirrored, 2 * np.pi - beta, beta)
+        sign = np.where(mirrored[:, None], _MIRRORED, 1.0)
+    beta = np.clip(beta, directions[0], directions[-1])
+    i = np.clip(np.searchsorted(omegas, w) - 1, 0, omegas.shape[0] - 2)
+    j = np.clip(np.searchsorted(directions, beta) - 1, 0, directions.shape[0] - 2)
+    u = ((w - omegas[i]) / (omegas[i + 1] - omegas[i]))[:, None]
+    v = ((beta - directions[j]) / (directions[j + 1] - directions[j]))[:, None]
+    value = ((1 - u) * (1 - v) * table[i, j] + u * (1 - v) * table[i + 1, j]
+             + (1 - u) * v * table[i, j + 1] + u * v * table[i + 1, j + 1])
+    return sign * value
 
 
 def _interp(grid: np.ndarray, table: np.ndarray, x: float) -> np.ndarray:

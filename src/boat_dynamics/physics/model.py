@@ -45,16 +45,14 @@ class Derivation:
             2 zeta sqrt(k m) is added to ``damping_linear``; None = none.
         quadratic: replace ``damping_quadratic`` by the default drag of the hull at its
             equilibrium draft (:func:`boat_dynamics.physics.tuning.default_drag`).
-        coefficients: the hull's potential-flow coefficients, or None.
-        added_mass: set ``added_mass`` from ``coefficients``: heave, roll and pitch at their
-            natural frequencies, surge, sway and yaw at infinite frequency.
+        added_mass: set ``added_mass`` from the boat's ``hydro`` coefficients: heave, roll and
+            pitch at their natural frequencies, surge, sway and yaw at infinite frequency.
         radiation_damping: add the radiation damping B_ii at the natural frequency to
-            ``damping_linear`` in heave, roll and pitch (from ``coefficients``).
+            ``damping_linear`` in heave, roll and pitch (from ``hydro``).
     """
 
     critical_ratio: np.ndarray | None = None
     quadratic: bool = False
-    coefficients: HydroCoefficients | None = None
     added_mass: bool = False
     radiation_damping: bool = False
 
@@ -89,6 +87,9 @@ class BoatParams:
             ... about the centre of mass (body axes); the tensor holds them negated.
         derive: what ``pipeline.init`` still has to derive (a scenario's boats), or None once
             derived (or for parameters given in full).
+        hydro: the hull's potential-flow coefficients (:mod:`boat_dynamics.physics.hydro`),
+            or None: the diffraction force, and the added mass and radiation damping
+            ``derive`` may ask for.
     """
 
     hull: BoxHull
@@ -111,6 +112,7 @@ class BoatParams:
     inertia_products: np.ndarray = field(default_factory=lambda: np.zeros(3))
     damping_decay: np.ndarray = field(default_factory=lambda: np.zeros(6))
     derive: Derivation | None = None
+    hydro: HydroCoefficients | None = None
 
 
 @dataclass(frozen=True)
@@ -153,7 +155,8 @@ class BoatInputs:
 class Forces:
     """Every wrench acting on the boat, body frame, about the centre of mass.
 
-    ``total`` is the net wrench (the sources plus gravity) that the integrator uses.
+    ``total`` is the net wrench (the sources plus gravity) that the integrator uses;
+    ``diffraction`` is zero for a boat without potential-flow coefficients.
     """
 
     buoyancy: Wrench
@@ -161,6 +164,7 @@ class Forces:
     drag: Wrench
     thrust: Wrench
     rudder: Wrench
+    diffraction: Wrench
     gravity: Wrench
     total: Wrench
 

@@ -223,6 +223,7 @@ class System:
         gravity: (B,) m/s^2.
         keel_rate: (B,) 1/s.
         special: the boats not in ``dynamic`` control mode.
+        diffracting: the boats with potential-flow coefficients (a diffraction force).
     """
 
     params: tuple[BoatParams, ...]
@@ -241,6 +242,7 @@ class System:
     gravity: np.ndarray
     keel_rate: np.ndarray
     special: tuple[int, ...]
+    diffracting: tuple[int, ...]
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -269,4 +271,5 @@ class System:
             gravity=np.array([p.gravity for p in ps]),
             keel_rate=np.array([p.keel_rate for p in ps]),
             special=tuple(i for i, p in enumerate(ps) if p.control.mode != "dynamic"),
+            diffracting=tuple(i for i, p in enumerate(ps) if p.hydro is not None),
         )

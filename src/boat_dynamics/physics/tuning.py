@@ -167,8 +167,8 @@ def derive(params: BoatParams) -> BoatParams:
         return params
     z_eq = equilibrium_height(params)
     linear, quadratic = params.damping_linear, params.damping_quadratic
-    if wanted.coefficients is not None and (wanted.added_mass or wanted.radiation_damping):
-        added, radiation = potential_flow_at_resonance(params, wanted.coefficients, z_eq)
+    if params.hydro is not None and (wanted.added_mass or wanted.radiation_damping):
+        added, radiation = potential_flow_at_resonance(params, params.hydro, z_eq)
         if wanted.added_mass:
             params = replace(params, added_mass=added)
         if wanted.radiation_damping:

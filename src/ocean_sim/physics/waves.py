@@ -39,6 +39,7 @@ __all__ = [
     "WaveComponent",
     "WaveField",
     "angular_frequency",
+    "component_phases",
     "displace",
     "find_rest_positions",
     "pressure_head",
@@ -237,6 +238,18 @@ def _time_phase(wf: WaveField, t: float) -> np.ndarray:
     """(M,) rad: phi_i - omega_i t reduced modulo 2 pi in float64, so long runs keep precision."""
     ar = wf.arrays
     return np.mod(ar.phi - np.mod(ar.omega * t, TWO_PI), TWO_PI)
+
+
+def component_phases(wf: WaveField, xy: np.ndarray, t: float) -> np.ndarray:
+    """(N, M) rad, theta_i = k_i D_i . p - omega_i t + phi_i of every component at N points.
+
+    Args:
+        wf: the sea state.
+        xy: (N, 2) m, horizontal positions (rest positions of surface particles, or any
+            points for linear theory).
+        t: simulation time, s.
+    """
+    return np.asarray(xy, dtype=float) @ wf.arrays.kd + _time_phase(wf, t)
 
 
 def displace(wf: WaveField, rest_xy: np.ndarray, t: float) -> np.ndarray:
@@ -573,7 +586,7 @@ def pressure_head(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray, z: np
         return -z
     ar = wf.arrays
     eta = np.asarray(heights, dtype=float)
-    cos_theta = np.cos(np.asarray(rest_xy, dtype=float) @ ar.kd + _time_phase(wf, t))
+    cos_theta = np.cos(component_phases(wf, rest_xy, t))
     if math.isinf(wf.depth):
         decay = np.exp(np.multiply.outer(np.minimum(z - eta, 0.0), ar.k))
     else:

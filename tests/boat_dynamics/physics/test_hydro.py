@@ -69,7 +69,7 @@ def test_boatsim_hydrostatics_equal_capytaines():
 @pytest.mark.parametrize(("index", "tolerance"), [(3, 0.03), (8, 0.03), (13, 0.03), (18, 0.05)])
 def test_froude_krylov_excitation_equals_capytaines(direction_deg, index, tolerance):
     # boatsim's pressure model against Capytaine's Froude-Krylov force, amplitude and phase,
-    # all six dofs about the centre of mass, at wavelengths 10.4, 4.1, 1.9 L (3 %) and 0.46 L
+    # all six dofs about the centre of mass, at wavelengths 8.0, 1.9, 0.82 L (3 %) and 0.46 L
     # (5 %: the 4096-triangle cap leaves 6.6 panels per wavelength there).
     from boat_dynamics.physics.boat import BoatInputs, evaluate_forces, initial_state
     from boat_dynamics.physics.pipeline import init_scenario

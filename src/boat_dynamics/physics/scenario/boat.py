@@ -73,9 +73,9 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         stokes_drift=flag(d, "stokes_drift", key, False),
         control=control,
         derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd,
-                          coefficients=coefficients,
                           added_mass=coefficients is not None and "added_mass" not in d,
                           radiation_damping=radiation),
+        hydro=coefficients,
     )
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
