@@ -19,7 +19,7 @@ import numpy as np
 
 from boat_dynamics.physics.wrench import Wrench
 
-__all__ = ["damping", "velocity_decay"]
+__all__ = ["damping", "radiation_damping", "velocity_decay"]
 
 
 def damping(
@@ -41,6 +41,23 @@ def damping(
     force = -(linear[..., :3] + quadratic[..., :3] * np.abs(velocity)) * velocity
     torque = -(linear[..., 3:] + quadratic[..., 3:] * np.abs(angular_velocity)) * angular_velocity
     return Wrench(force, torque)
+
+
+def radiation_damping(coefficients: np.ndarray, velocity: np.ndarray,
+                      angular_velocity: np.ndarray) -> Wrench:
+    """Wave radiation damping: -B v on the body's own velocity, not relative to the water.
+
+    The waves a moving hull makes carry energy away whatever the water around it does, so this
+    force acts on the velocity over ground (Newman 1977, sec. 6.12; WEC-Sim's radiation
+    damping); linear damping relative to the water would instead be driven by the waves'
+    orbital velocity, which in short waves is larger than their true excitation.
+
+    Args:
+        coefficients: (..., 6) N/(m/s) and N m/(rad/s), B_ii per body dof.
+        velocity: (..., 3) m/s, body velocity over ground, body frame.
+        angular_velocity: (..., 3) rad/s, body frame.
+    """
+    return Wrench(-coefficients[..., :3] * velocity, -coefficients[..., 3:] * angular_velocity)
 
 
 def velocity_decay(velocity: np.ndarray, angular_velocity: np.ndarray, rates: np.ndarray,

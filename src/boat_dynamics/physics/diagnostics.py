@@ -48,6 +48,8 @@ def active_remedies(params: BoatParams, substeps: int) -> list[str]:
         out.append("velocity decay (seed notes)")
     if np.any(params.added_mass > 0):
         out.append("added mass")
+    if np.any(params.radiation_damping > 0):
+        out.append("radiation damping (potential flow)")
     if substeps > 1:
         out.append(f"{substeps} substeps")
     if params.control.mode == "constrained":

@@ -13,7 +13,7 @@ import numpy as np
 
 from boat_dynamics.physics.buoyancy import sample_point_group
 from boat_dynamics.physics.contact import Contact, GroupContact
-from boat_dynamics.physics.damping import damping
+from boat_dynamics.physics.damping import damping, radiation_damping
 from boat_dynamics.physics.diffraction import diffraction_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
 from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
@@ -52,6 +52,9 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     com = system.center_of_mass
     damp = damping(system.damping_linear, system.damping_quadratic, relative,
                    state.angular_velocity)
+    if system.radiation is not None:  # potential-flow coefficients: on the body's velocity
+        damp = damp + radiation_damping(system.radiation, state.velocity,
+                                        state.angular_velocity)
     push = _per_group(system, lambda g: thrust(g.propulsion, state.throttle[g.index],
                                                inputs.rudder[g.index], com[g.index]))
     steer = _per_group(system, lambda g: rudder_wrench(

@@ -47,8 +47,8 @@ class Derivation:
             equilibrium draft (:func:`boat_dynamics.physics.tuning.default_drag`).
         added_mass: set ``added_mass`` from the boat's ``hydro`` coefficients: heave, roll and
             pitch at their natural frequencies, surge, sway and yaw at infinite frequency.
-        radiation_damping: add the radiation damping B_ii at the natural frequency to
-            ``damping_linear`` in heave, roll and pitch (from ``hydro``).
+        radiation_damping: set ``radiation_damping`` to B_ii at the natural frequency in
+            heave, roll and pitch (from ``hydro``).
     """
 
     critical_ratio: np.ndarray | None = None
@@ -87,6 +87,8 @@ class BoatParams:
             ... about the centre of mass (body axes); the tensor holds them negated.
         derive: what ``pipeline.init`` still has to derive (a scenario's boats), or None once
             derived (or for parameters given in full).
+        radiation_damping: (6,) N/(m/s) and N m/(rad/s), wave radiation damping per body dof,
+            on the body's own velocity (:func:`boat_dynamics.physics.damping.radiation_damping`).
         hydro: the hull's potential-flow coefficients (:mod:`boat_dynamics.physics.hydro`),
             or None: the diffraction force, and the added mass and radiation damping
             ``derive`` may ask for.
@@ -112,6 +114,7 @@ class BoatParams:
     inertia_products: np.ndarray = field(default_factory=lambda: np.zeros(3))
     damping_decay: np.ndarray = field(default_factory=lambda: np.zeros(6))
     derive: Derivation | None = None
+    radiation_damping: np.ndarray = field(default_factory=lambda: np.zeros(6))
     hydro: HydroCoefficients | None = None
 
 

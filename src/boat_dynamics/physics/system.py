@@ -217,6 +217,8 @@ class System:
         effective_inertia: (B, 3) kg m^2, moments plus roll/pitch/yaw added inertia.
         inertia_products: (B, 3) kg m^2, or None when every boat's are zero.
         decay: (B, 6) 1/s, the notes' velocity decay, or None when off for every boat.
+        radiation: (B, 6) wave radiation damping on the body velocity, or None when zero for
+            every boat.
         damping_linear: (B, 6) N/(m/s), N m/(rad/s).
         damping_quadratic: (B, 6) N/(m/s)^2, N m/(rad/s)^2.
         water_density: (B,) kg/m^3.
@@ -236,6 +238,7 @@ class System:
     effective_inertia: np.ndarray
     inertia_products: np.ndarray | None
     decay: np.ndarray | None
+    radiation: np.ndarray | None
     damping_linear: np.ndarray
     damping_quadratic: np.ndarray
     water_density: np.ndarray
@@ -258,6 +261,7 @@ class System:
         added = np.array([p.added_mass for p in ps], dtype=float)
         products = np.array([p.inertia_products for p in ps], dtype=float)
         decay = np.array([p.damping_decay for p in ps], dtype=float)
+        radiation = np.array([p.radiation_damping for p in ps], dtype=float)
         return cls(
             params=ps, count=len(ps), groups=groups, mass=mass,
             center_of_mass=np.array([p.center_of_mass for p in ps], dtype=float),
@@ -265,6 +269,7 @@ class System:
             effective_inertia=inertia + added[:, 3:],
             inertia_products=products if np.any(products != 0.0) else None,
             decay=decay if np.any(decay > 0.0) else None,
+            radiation=radiation if np.any(radiation > 0.0) else None,
             damping_linear=np.array([p.damping_linear for p in ps], dtype=float),
             damping_quadratic=np.array([p.damping_quadratic for p in ps], dtype=float),
             water_density=np.array([p.water_density for p in ps]),

@@ -172,7 +172,7 @@ def derive(params: BoatParams) -> BoatParams:
         if wanted.added_mass:
             params = replace(params, added_mass=added)
         if wanted.radiation_damping:
-            linear = linear + radiation
+            params = replace(params, radiation_damping=radiation)
     if wanted.critical_ratio is not None:
         linear = linear + critical_damping(params, wanted.critical_ratio, z_eq)
     if wanted.quadratic:
