@@ -69,23 +69,6 @@ class HydroCoefficients:
         """(6, 6) B at ``omega`` (linear in omega between grid points, clamped at the ends)."""
         return _interp(self.omega, self.radiation_damping, omega)
 
-    def excitation_at(self, omega: float, direction: float, froude_krylov: bool = True,
-                      diffraction: bool = True) -> np.ndarray:
-        """(6,) complex excitation per metre of amplitude at ``omega`` and ``direction``.
-
-        Linear in omega and in the direction between grid points (directions taken modulo
-        2 pi on the grid's span; outside it, the nearest grid direction).
-        """
-        parts = []
-        if froude_krylov:
-            parts.append(self.froude_krylov)
-        if diffraction:
-            parts.append(self.diffraction)
-        table = sum(parts)
-        by_direction = _interp(self.omega, table, omega)  # (D, 6)
-        d = np.mod(direction - self.directions[0], 2 * np.pi) + self.directions[0]
-        return _interp(self.directions, by_direction, d)
-
     def diffraction_at(self, omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
         """(M, 6) complex diffraction forces per metre of amplitude for M (omega, direction).
 
