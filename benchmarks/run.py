@@ -14,6 +14,7 @@ import argparse
 import math
 import time
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -25,6 +26,9 @@ from boat_dynamics.process import keep_freed_memory
 from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
 
 keep_freed_memory()  # as `boatsim` does (see boat_dynamics/process.py)
+
+_BOX_COEFFICIENTS = (Path(__file__).resolve().parents[1] / "tests" / "data" / "hydro"
+                     / "box_4x2x1_d0.5.npz")
 
 
 def _best_of(fn, repeats: int) -> float:
@@ -83,6 +87,8 @@ def bench_boat_step() -> None:
                                                           "layout": "boat"}}, (10, 100)),
         ("mesh box, 12 triangles", {}, (10, 100)),
         ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}, (10,)),
+        ("mesh box, 12 tri, coefficients, resonance", _coefficients("resonance"), (10, 100)),
+        ("mesh box, 12 tri, coefficients, Cummins", _coefficients("cummins"), (10, 100)),
         # panelled by pipeline.init for this sea's shortest wave (so initialized in it)
         ("mesh box, Froude-Krylov", {"buoyancy": {"pressure": "froude_krylov"}}, (10,)),
     )
@@ -126,7 +132,13 @@ def bench_boat_step() -> None:
             together()
             fsec = _best_of(together, 15)
             figures.append(f"in a fleet of {fleet_size:>3}: {fsec / (m * fleet_size) * 1e6:7.1f}")
-        print(f"  {label:<32}: {'; '.join(figures)} us per boat-step")
+        print(f"  {label:<42}: {'; '.join(figures)} us per boat-step")
+
+
+def _coefficients(radiation: str) -> dict:
+    """The default box with its potential-flow file (diffraction; radiation as given)."""
+    return {"center_of_mass": [0.0, 0.0, -0.2],
+            "hydrodynamics": {"coefficients": str(_BOX_COEFFICIENTS), "radiation": radiation}}
 
 
 def _initialized(scenario, sea: WaveField | None):

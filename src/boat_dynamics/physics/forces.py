@@ -18,6 +18,7 @@ from boat_dynamics.physics.diffraction import diffraction_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
 from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
 from boat_dynamics.physics.propulsion import thrust
+from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import Wrench
@@ -55,6 +56,8 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     if system.radiation is not None:  # potential-flow coefficients: on the body's velocity
         damp = damp + radiation_damping(system.radiation, state.velocity,
                                         state.angular_velocity)
+    if system.memory is not None and state.memory is not None:  # Cummins: the waves made
+        damp = damp + Wrench(*memory_wrench(system.memory.output, state.memory))
     push = _per_group(system, lambda g: thrust(g.propulsion, state.throttle[g.index],
                                                inputs.rudder[g.index], com[g.index]))
     steer = _per_group(system, lambda g: rudder_wrench(

@@ -79,6 +79,10 @@ class HydroCoefficients:
         """
         return _bilinear(self.omega, self.directions, self.diffraction, omega, direction)
 
+    def froude_krylov_at(self, omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """(M, 6) complex Froude-Krylov forces per metre of amplitude, as :meth:`diffraction_at`."""
+        return _bilinear(self.omega, self.directions, self.froude_krylov, omega, direction)
+
     def natural(self, dof: int, stiffness: float, inertia: float) -> tuple[float, float, float]:
         """(omega_n rad/s, A_ii(omega_n), damping ratio) of one dof with its added mass.
 

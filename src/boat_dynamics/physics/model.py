@@ -6,6 +6,7 @@ SI units, body frame FLU, world frame ENU (REP-103). :mod:`boat_dynamics.physics
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
@@ -15,6 +16,7 @@ from boat_dynamics.physics.hull import BoxHull
 from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.propulsion import Propulsion
+from boat_dynamics.physics.radiation import RadiationMemory
 from boat_dynamics.physics.rigid_body import quat_from_euler, rotation_matrix
 from boat_dynamics.physics.rudder import Rudder
 from boat_dynamics.physics.wrench import Wrench
@@ -22,14 +24,24 @@ from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.waves import Precision
 
 __all__ = [
+    "RADIATION_MODELS",
     "BoatInputs",
     "BoatParams",
     "BoatState",
     "Derivation",
     "Forces",
+    "RadiationModel",
     "initial_state",
     "reference_pose",
 ]
+
+
+#: How a boat with potential-flow coefficients feels its own waves: ``cummins``, the 6 x 6
+#: infinite-frequency added mass and the fitted radiation memory (:mod:`.radiation`);
+#: ``resonance``, constant diagonal added mass and damping at the natural frequencies
+#: (:func:`boat_dynamics.physics.tuning.potential_flow_at_resonance`), for comparison.
+RadiationModel = Literal["cummins", "resonance"]
+RADIATION_MODELS: tuple[RadiationModel, ...] = ("cummins", "resonance")
 
 
 @dataclass(frozen=True)
@@ -49,12 +61,15 @@ class Derivation:
             pitch at their natural frequencies, surge, sway and yaw at infinite frequency.
         radiation_damping: set ``radiation_damping`` to B_ii at the natural frequency in
             heave, roll and pitch (from ``hydro``).
+        memory: set ``added_mass_matrix`` to ``hydro``'s A_inf and ``radiation_memory`` to
+            its fitted memory (the Cummins equation).
     """
 
     critical_ratio: np.ndarray | None = None
     quadratic: bool = False
     added_mass: bool = False
     radiation_damping: bool = False
+    memory: bool = False
 
 
 @dataclass(frozen=True)
@@ -92,6 +107,12 @@ class BoatParams:
         hydro: the hull's potential-flow coefficients (:mod:`boat_dynamics.physics.hydro`),
             or None: the diffraction force, and the added mass and radiation damping
             ``derive`` may ask for.
+        added_mass_matrix: (6, 6) kg, kg m, kg m^2, the full added mass about the centre of
+            mass (body axes), or None; when set it replaces ``added_mass`` and the boat is
+            integrated with the coupled mass matrix
+            (:func:`boat_dynamics.physics.rigid_body.integrate_coupled`).
+        radiation_memory: the Cummins radiation memory (:mod:`boat_dynamics.physics.radiation`),
+            padded to :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes, or None.
     """
 
     hull: BoxHull
@@ -116,6 +137,8 @@ class BoatParams:
     derive: Derivation | None = None
     radiation_damping: np.ndarray = field(default_factory=lambda: np.zeros(6))
     hydro: HydroCoefficients | None = None
+    added_mass_matrix: np.ndarray | None = None
+    radiation_memory: RadiationMemory | None = None
 
 
 @dataclass(frozen=True)
@@ -130,6 +153,8 @@ class BoatState:
         angular_velocity: (3,) rad/s, body frame.
         throttle: -1..1, the actual thrust fraction (lags the command with a time constant).
         control_weight: 0..1, how far the control mode has taken over since it was selected.
+        memory: (N,) complex, the state of the boat's radiation memory
+            (:mod:`boat_dynamics.physics.radiation`), or None: calm (all zero).
     """
 
     t: float
@@ -139,6 +164,7 @@ class BoatState:
     angular_velocity: np.ndarray
     throttle: float = 0.0
     control_weight: float = 1.0
+    memory: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

@@ -94,7 +94,7 @@ def apply_modes(system: System, before: FleetState, after: FleetState, sea: Wave
         p[i] = pose.ref + rot @ params.center_of_mass
         q[i], v[i], w[i] = pose.orientation, rot.T @ pose.velocity, pose.angular_velocity
         weights[i] = weight
-    return FleetState(after.t, p, q, v, w, after.throttle, weights)
+    return FleetState(after.t, p, q, v, w, after.throttle, weights, after.memory)
 
 
 def _pose(params: BoatParams, state: FleetState, i: int) -> Pose:

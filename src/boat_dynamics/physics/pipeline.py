@@ -27,7 +27,8 @@ from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, panelled
 from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.modes import apply_modes, pd_torques
 from boat_dynamics.physics.propulsion import lagged_throttle
-from boat_dynamics.physics.rigid_body import integrate, rotation_matrix
+from boat_dynamics.physics.radiation import advance
+from boat_dynamics.physics.rigid_body import integrate, integrate_coupled, rotation_matrix
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.tuning import derive
 from ocean_sim.physics.waves import WaveField, slope_orbit_velocity
@@ -209,10 +210,38 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
                            state.angular_velocity, acting.total.force, torque,
                            system.effective_mass, system.effective_inertia, dt,
                            system.inertia_products)
+    if system.coupled:
+        _integrate_coupled(system, state, acting.total.force, torque, dt, (p, q, v, w))
     v = reflect_off_keel(v, system.keel_rate, dt)
     if system.decay is not None:
         v, w = velocity_decay(v, w, system.decay, dt)
     after = FleetState(state.t + dt, p, q, v, w, throttle, state.control_weight)
     if system.special:
         after = apply_modes(system, state, after, sea, dt)
+    if system.memory is not None:
+        after = replace(after, memory=_memory_after(system, state, after, dt))
     return Step(after, acting, contact)
+
+
+def _integrate_coupled(system: System, state: FleetState, force: np.ndarray,
+                       torque: np.ndarray, dt: float, into: tuple[np.ndarray, ...]) -> None:
+    """Overwrite the ``coupled`` boats' rows of ``into`` (p, q, v, w) by the 6 x 6 step."""
+    i = np.array(system.coupled, dtype=np.intp)
+    new = integrate_coupled(state.position[i], state.orientation[i], state.velocity[i],
+                            state.angular_velocity[i], force[i], torque[i], system.mass[i],
+                            system.inertia_tensor, system.mass_matrix_inverse, dt)
+    for array, rows in zip(into, new, strict=True):
+        array[i] = rows
+
+
+def _memory_after(system: System, state: FleetState, after: FleetState, dt: float
+                  ) -> np.ndarray:
+    """(B, N) radiation memory states at t + dt (:func:`.radiation.advance`)."""
+    memory = system.memory
+    z = state.memory if state.memory is not None else np.zeros(memory.poles.shape, complex)
+    if z.shape != memory.poles.shape:
+        raise ValueError(f"state.memory: shape {z.shape}, the system's memory has "
+                         f"{memory.poles.shape}")
+    before = np.concatenate([state.velocity, state.angular_velocity], axis=1)
+    now = np.concatenate([after.velocity, after.angular_velocity], axis=1)
+    return advance(memory.poles, memory.input, z, before, now, dt)

@@ -20,6 +20,7 @@ from boat_dynamics.physics.wrench import cross
 __all__ = [
     "inertia_tensor",
     "integrate",
+    "integrate_coupled",
     "quat_from_euler",
     "quat_multiply",
     "quat_to_euler",
@@ -174,8 +175,55 @@ def integrate(
         spin = np.einsum("...ij,...j->...i", tensor, angular_velocity)
         w_dot = np.linalg.solve(tensor, (torque - cross(angular_velocity, spin))[..., None])[
             ..., 0]
-    v = velocity + dt * v_dot
-    w = angular_velocity + dt * w_dot
+    return _advance(position, orientation, velocity + dt * v_dot,
+                    angular_velocity + dt * w_dot, dt)
+
+
+def integrate_coupled(
+    position: np.ndarray,
+    orientation: np.ndarray,
+    velocity: np.ndarray,
+    angular_velocity: np.ndarray,
+    force: np.ndarray,
+    torque: np.ndarray,
+    mass: np.ndarray,
+    inertia: np.ndarray,
+    mass_matrix_inverse: np.ndarray,
+    dt: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`integrate` with a full 6 x 6 mass matrix (rigid body plus added mass).
+
+    (M_RB + A) nu' = tau - C_RB(nu) nu, nu = [v, w] about the centre of mass, with the
+    rigid-body Coriolis and centripetal terms C_RB(nu) nu = [m w x v, w x (I w)] (Fossen 2011,
+    eqs. 3.47-3.48 and 6.1). The added-mass Coriolis terms C_A(nu) nu (Munk moment) are left
+    out, as in linear seakeeping theory at zero speed.
+
+    Args:
+        position: (..., 3) m, centre of mass, world frame.
+        orientation: (..., 4) unit quaternion (x, y, z, w), body to world.
+        velocity: (..., 3) m/s, body frame.
+        angular_velocity: (..., 3) rad/s, body frame.
+        force: (..., 3) N, total, body frame.
+        torque: (..., 3) N m, total about the centre of mass, body frame.
+        mass: (...,) kg, rigid-body mass.
+        inertia: (..., 3, 3) kg m^2, rigid-body inertia tensor about the centre of mass.
+        mass_matrix_inverse: (..., 6, 6) (M_RB + A)^-1.
+        dt: s.
+
+    Returns:
+        New (position, orientation, velocity, angular_velocity).
+    """
+    spin = np.einsum("...ij,...j->...i", inertia, angular_velocity)
+    rhs = np.concatenate([force - mass[..., None] * cross(angular_velocity, velocity),
+                          torque - cross(angular_velocity, spin)], axis=-1)
+    nu_dot = np.einsum("...ij,...j->...i", mass_matrix_inverse, rhs)
+    return _advance(position, orientation, velocity + dt * nu_dot[..., :3],
+                    angular_velocity + dt * nu_dot[..., 3:], dt)
+
+
+def _advance(position: np.ndarray, orientation: np.ndarray, v: np.ndarray, w: np.ndarray,
+             dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The pose after ``dt`` s at the new body velocities ``v``, ``w`` (semi-implicit Euler)."""
     q = quat_multiply(orientation, _quat_exp(w * dt))
     q = q / np.sqrt(np.einsum("...i,...i->...", q, q))[..., None]
     p = position + dt * np.einsum("...ij,...j->...i", rotation_matrix(q), v)

@@ -24,6 +24,8 @@ from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces
 from boat_dynamics.physics.propulsion import Propulsion
+from boat_dynamics.physics.radiation import MAX_ORDER, RadiationMemory
+from boat_dynamics.physics.rigid_body import inertia_tensor
 from boat_dynamics.physics.rudder import Rudder
 from boat_dynamics.physics.wrench import Wrench
 from ocean_sim.physics.waves import Precision
@@ -43,6 +45,8 @@ class FleetState:
         angular_velocity: (B, 3) rad/s, body frame.
         throttle: (B,) actual thrust fractions.
         control_weight: (B,) 0..1, how far each control mode has taken over.
+        memory: (B, N) complex, the boats' radiation memory states
+            (:mod:`boat_dynamics.physics.radiation`), or None: all calm (zero).
     """
 
     t: float
@@ -52,6 +56,7 @@ class FleetState:
     angular_velocity: np.ndarray
     throttle: np.ndarray
     control_weight: np.ndarray
+    memory: np.ndarray | None = None
 
     @classmethod
     def stack(cls, states: Sequence[BoatState]) -> FleetState:
@@ -64,13 +69,26 @@ class FleetState:
                    np.array([s.velocity for s in states], dtype=float),
                    np.array([s.angular_velocity for s in states], dtype=float),
                    np.array([s.throttle for s in states], dtype=float),
-                   np.array([s.control_weight for s in states], dtype=float))
+                   np.array([s.control_weight for s in states], dtype=float),
+                   _stack_memory([s.memory for s in states]))
 
     def boat(self, i: int) -> BoatState:
         """Boat ``i``'s state (arrays are copies: the fleet state stays frozen)."""
         return BoatState(self.t, self.position[i].copy(), self.orientation[i].copy(),
                          self.velocity[i].copy(), self.angular_velocity[i].copy(),
-                         float(self.throttle[i]), float(self.control_weight[i]))
+                         float(self.throttle[i]), float(self.control_weight[i]),
+                         None if self.memory is None else self.memory[i].copy())
+
+
+def _stack_memory(memories: Sequence[np.ndarray | None]) -> np.ndarray | None:
+    """(B, N) complex memory states, a calm boat's (None) as zeros; None when all are calm."""
+    if all(m is None for m in memories):
+        return None
+    sizes = {m.shape for m in memories if m is not None}
+    if len(sizes) != 1:
+        raise ValueError(f"radiation memories of different sizes {sorted(sizes)}")
+    zero = np.zeros(sizes.pop(), dtype=complex)
+    return np.array([zero if m is None else m for m in memories], dtype=complex)
 
 
 @dataclass(frozen=True)
@@ -226,6 +244,14 @@ class System:
         keel_rate: (B,) 1/s.
         special: the boats not in ``dynamic`` control mode.
         diffracting: the boats with potential-flow coefficients (a diffraction force).
+        coupled: the boats with a 6 x 6 added mass (``added_mass_matrix``), integrated with
+            :func:`boat_dynamics.physics.rigid_body.integrate_coupled`.
+        mass_matrix_inverse: (C, 6, 6) (M_RB + A)^-1 of the ``coupled`` boats, or None.
+        inertia_tensor: (C, 3, 3) kg m^2, their rigid-body inertia tensors, or None.
+        memory: the boats' radiation memories stacked and padded to N =
+            :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes ((B, N) poles, (B, N, 6)
+            input, (B, 6, N) output; zero for a boat without one), or None when no boat has
+            one.
     """
 
     params: tuple[BoatParams, ...]
@@ -246,6 +272,10 @@ class System:
     keel_rate: np.ndarray
     special: tuple[int, ...]
     diffracting: tuple[int, ...]
+    coupled: tuple[int, ...] = ()
+    mass_matrix_inverse: np.ndarray | None = None
+    inertia_tensor: np.ndarray | None = None
+    memory: RadiationMemory | None = None
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -277,4 +307,30 @@ class System:
             keel_rate=np.array([p.keel_rate for p in ps]),
             special=tuple(i for i, p in enumerate(ps) if p.control.mode != "dynamic"),
             diffracting=tuple(i for i, p in enumerate(ps) if p.hydro is not None),
+            **_coupling(ps),
         )
+
+
+def _coupling(ps: Sequence[BoatParams]) -> dict:
+    """The :class:`System` fields of boats with a 6 x 6 added mass and a radiation memory."""
+    coupled = tuple(i for i, p in enumerate(ps) if p.added_mass_matrix is not None)
+    out: dict = {"coupled": coupled}
+    if coupled:
+        tensors = np.array([inertia_tensor(ps[i].inertia, ps[i].inertia_products)
+                            for i in coupled])
+        matrices = np.zeros((len(coupled), 6, 6))
+        for k, i in enumerate(coupled):
+            matrices[k, :3, :3] = ps[i].mass * np.eye(3)
+            matrices[k, 3:, 3:] = tensors[k]
+            matrices[k] += ps[i].added_mass_matrix
+        out.update(mass_matrix_inverse=np.linalg.inv(matrices), inertia_tensor=tensors)
+    memories = [p.radiation_memory for p in ps]
+    if any(m is not None for m in memories):
+        calm = RadiationMemory(np.zeros(0, complex), np.zeros((0, 6), complex),
+                               np.zeros((6, 0), complex), 0.0)
+        memories = [(calm if m is None else m).padded(MAX_ORDER) for m in memories]
+        out["memory"] = RadiationMemory(np.array([m.poles for m in memories]),
+                                        np.array([m.input for m in memories]),
+                                        np.array([m.output for m in memories]),
+                                        max(m.error for m in memories))
+    return out

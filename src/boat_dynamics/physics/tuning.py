@@ -18,6 +18,7 @@ from boat_dynamics.physics.forces import forces
 from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
+from boat_dynamics.physics.radiation import fit_memory
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from ocean_sim.physics.waves import WaveField
@@ -153,9 +154,10 @@ def derive(params: BoatParams) -> BoatParams:
     """``params`` with what its :class:`~.model.Derivation` asks for, computed once.
 
     The equilibrium height (flat water, upright) becomes ``control.height_offset``; with
-    potential-flow coefficients, the added mass and radiation damping of
-    :func:`potential_flow_at_resonance`; then ``damping_linear`` += :func:`critical_damping`
-    of ``critical_ratio`` and, with
+    potential-flow coefficients, the 6 x 6 infinite-frequency added mass and the fitted
+    radiation memory of the Cummins equation (:func:`.radiation.fit_memory`), or the added
+    mass and radiation damping of :func:`potential_flow_at_resonance`; then
+    ``damping_linear`` += :func:`critical_damping` of ``critical_ratio`` and, with
     ``quadratic``, ``damping_quadratic`` = :func:`default_drag`. Parameters with nothing to
     derive (``derive`` None) are returned as they are.
 
@@ -167,6 +169,9 @@ def derive(params: BoatParams) -> BoatParams:
         return params
     z_eq = equilibrium_height(params)
     linear, quadratic = params.damping_linear, params.damping_quadratic
+    if params.hydro is not None and wanted.memory:
+        params = replace(params, added_mass_matrix=params.hydro.added_mass_inf.copy(),
+                         radiation_memory=fit_memory(params.hydro))
     if params.hydro is not None and (wanted.added_mass or wanted.radiation_damping):
         added, radiation = potential_flow_at_resonance(params, params.hydro, z_eq)
         if wanted.added_mass:

@@ -28,6 +28,7 @@ from boat_dynamics.physics.commands import check_command
 from boat_dynamics.physics.contact import Contact, contact, reference_points
 from boat_dynamics.physics.control import CONTROL_MODES
 from boat_dynamics.physics.diagnostics import active_remedies, fleet_reports
+from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
@@ -205,6 +206,7 @@ class DynamicsNode(Node):
             f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the waves at "
             f"({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
             f"{names.boat_topic(spec.name, names.ODOM)}")
+        self.get_logger().info(f"boat {label}: {_hydrodynamics(spec.params)}")
         return boat
 
     def boat_positions(self) -> np.ndarray:
@@ -406,3 +408,17 @@ class DynamicsNode(Node):
         self._diag_pub.publish(diagnostic_array(stamp, [
             (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message, r.values)
             for boat, r in zip(self.boats, reports, strict=True)]))
+
+
+def _hydrodynamics(params: BoatParams) -> str:
+    """One line on the boat's wave radiation and diffraction, for the start-up log."""
+    memory = params.radiation_memory
+    if params.hydro is None:
+        return ("no potential-flow coefficients (hydrodynamics.coefficients): added mass and "
+                "damping as the scenario gives them, no diffraction")
+    if memory is not None:
+        return (f"potential-flow coefficients: Cummins radiation (A_inf 6 x 6, memory of "
+                f"{memory.poles.shape[0]} modes fitting B and A within "
+                f"{100 * memory.error:.1f} %), diffraction")
+    return ("potential-flow coefficients: added mass and radiation damping at the natural "
+            "frequencies (radiation: resonance), diffraction")

@@ -12,7 +12,14 @@ import numpy as np
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.physics.hydro import HydroCoefficients, HydroFileError, load_coefficients
-from boat_dynamics.physics.model import BoatParams, BoatState, Derivation, initial_state
+from boat_dynamics.physics.model import (
+    RADIATION_MODELS,
+    BoatParams,
+    BoatState,
+    Derivation,
+    RadiationModel,
+    initial_state,
+)
 from boat_dynamics.physics.rigid_body import inertia_tensor
 from boat_dynamics.physics.scenario.models import (
     buoyancy_block,
@@ -53,11 +60,16 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     rudder = rudder_block(mapping(d.get("rudder"), f"{key}.rudder"), f"{key}.rudder", hull)
     keel_rate = keel_block(mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel")
     control = control_block(d, key)
-    coefficients = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics", base_dir, com)
-    radiation = (coefficients is not None and "linear" not in dd
-                 and "critical_ratio" not in dd)
-    if radiation:
+    coefficients, model = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics",
+                                         base_dir, com)
+    if coefficients is not None and "critical_ratio" not in dd:
         ratio = None  # the radiation damping replaces the default critical ratio
+    radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
+    if model == "cummins" and np.any(added != 0.0):
+        raise ScenarioError(f"{key}.added_mass", d.get("added_mass"),
+                            "must be zero (or absent) with hydrodynamics.radiation cummins, "
+                            "which takes the added mass from the coefficients; or choose "
+                            "radiation: resonance")
     ik = f"{key}.initial_pose"
     idd = mapping(d.get("initial_pose"), ik)
     only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
@@ -73,8 +85,8 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         stokes_drift=flag(d, "stokes_drift", key, False),
         control=control,
         derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd,
-                          added_mass=coefficients is not None and "added_mass" not in d,
-                          radiation_damping=radiation),
+                          added_mass=model == "resonance" and "added_mass" not in d,
+                          radiation_damping=radiation, memory=model == "cummins"),
         hydro=coefficients,
     )
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
@@ -184,16 +196,24 @@ def _damping(dd: Mapping[str, Any], dk: str
 
 
 def _hydrodynamics(raw: Any, key: str, base_dir: Path, com: np.ndarray
-                   ) -> HydroCoefficients | None:
-    """``hydrodynamics``: the hull's potential-flow coefficient file (``coefficients``), or None.
+                   ) -> tuple[HydroCoefficients | None, RadiationModel | None]:
+    """``hydrodynamics``: the hull's coefficient file (``coefficients``) and ``radiation``.
 
     A relative path is taken from the scenario's directory. The file must have been solved
-    about the boat's centre of mass.
+    about the boat's centre of mass. ``radiation`` (:data:`~.model.RadiationModel`, default
+    ``cummins``) only with ``coefficients``.
+
+    Returns:
+        The coefficients and the radiation model, or (None, None).
     """
     d = mapping(raw, key)
-    only(d, key, ("coefficients",))
+    only(d, key, ("coefficients", "radiation"))
     if "coefficients" not in d:
-        return None
+        if "radiation" in d:
+            raise ScenarioError(f"{key}.radiation", d["radiation"],
+                                "needs hydrodynamics.coefficients (a coefficient file)")
+        return None, None
+    model = choice(d, "radiation", key, "cummins", RADIATION_MODELS)
     path = d["coefficients"]
     if not isinstance(path, str) or not path:
         raise ScenarioError(f"{key}.coefficients", path,
@@ -208,7 +228,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, com: np.ndarray
                             f"was solved about the centre of mass "
                             f"{coefficients.center_of_mass.tolist()}, the boat's is "
                             f"{com.tolist()} (m)")
-    return coefficients
+    return coefficients, model
 
 
 def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
