@@ -10,6 +10,7 @@ import math
 import os
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 
 # One BLAS thread, set before numpy loads (unless the user set it): the wave kernels make many
 # small matrix products, and OpenBLAS waking its threads for each one made a 1,000-point x
@@ -40,6 +41,7 @@ def _parser() -> argparse.ArgumentParser:
     _add_run(verbs)
     _add_query(verbs)
     _add_bag_verbs(verbs)
+    _add_rao(verbs)
     teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
     teleop.add_argument("--ns", default="", metavar="NAME",
                         help="the boat's namespace (default: the root namespace)")
@@ -122,6 +124,58 @@ def _add_bag_verbs(verbs) -> None:
                         help="speed factor against a real-time simulation (default 1)")
     replay.add_argument("--timeout", type=_positive_seconds, default=30.0, metavar="S",
                         help="seconds to wait for the simulation (default 30)")
+
+
+def _add_rao(verbs) -> None:
+    """``rao``: a boat's RAOs in regular waves, beside potential flow's."""
+    from boat_dynamics.tools.rao import DEFAULT_DIRECTIONS_DEG, DEFAULT_WAVELENGTHS
+
+    rao = verbs.add_parser(
+        "rao", help="a boat's heave, roll and pitch RAOs in regular waves",
+        description="Run one boat of SCENARIO alone in small regular waves of each "
+                    "wavelength and direction, print its heave (m/m), roll and pitch (deg/m) "
+                    "amplitudes per metre of wave, beside linear potential flow's when the "
+                    "boat has a coefficient file, and draw them to a PNG.")
+    rao.add_argument("scenario", nargs="?", metavar="SCENARIO",
+                     help="scenario file (default: the default scenario)")
+    rao.add_argument("--boat", metavar="NAME", help="the boat (default: the first)")
+    rao.add_argument("--wavelengths", nargs="+", type=_finite, metavar="L",
+                     default=list(DEFAULT_WAVELENGTHS),
+                     help="wavelengths in boat lengths (default: %(default)s)")
+    rao.add_argument("--directions-deg", nargs="+", type=_finite, metavar="DEG",
+                     default=list(DEFAULT_DIRECTIONS_DEG),
+                     help="directions the waves travel toward, relative to the bow: 180 head "
+                          "seas, 90 beam seas from starboard, 0 following (default: "
+                          "%(default)s)")
+    rao.add_argument("--amplitude", type=_finite, metavar="M",
+                     help="wave amplitude, m (default: 0.5 %% of the boat length, at most "
+                          "k a = 0.05)")
+    rao.add_argument("-o", "--output", metavar="FILE.png",
+                     help="the plot (default: SCENARIO-NAME_rao.png here)")
+
+
+def _rao(args: argparse.Namespace) -> int:
+    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.tools.rao import RaoError, format_table, plot_raos, rao_points
+
+    path = Path(args.scenario or default_scenario_path())
+    try:
+        scenario = load_scenario(path)
+        points = rao_points(scenario, args.boat, args.wavelengths, args.directions_deg,
+                            args.amplitude)
+    except (ScenarioError, RaoError) as exc:
+        print(f"boatsim rao: error: {exc}", file=sys.stderr)
+        return 2
+    boat = next(b for b in scenario.boats if args.boat in (None, b.name))
+    length = boat.params.hull.length
+    print(f"boatsim rao: {path}, boat {boat.name or '(root namespace)'}, length {length:g} m; "
+          f"(pf) = linear potential flow" + ("" if boat.params.hydro is not None else
+                                             " (none: no hydrodynamics.coefficients)"))
+    print(format_table(points, length))
+    out = plot_raos(points, length, args.output or f"{path.stem}_rao.png",
+                    f"{path.name}: boat {boat.name or '(root)'}, RAOs of the centre of mass")
+    print(f"boatsim: wrote {out}")
+    return 0
 
 
 def _compare(args: argparse.Namespace) -> int:
@@ -255,6 +309,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _query(args)
         if args.verb == "compare":
             return _compare(args)
+        if args.verb == "rao":
+            return _rao(args)
         if args.verb == "record":
             from boat_dynamics.tools.recording import RecordError, record
 

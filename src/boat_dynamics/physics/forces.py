@@ -17,6 +17,7 @@ from boat_dynamics.physics.damping import damping, radiation_damping
 from boat_dynamics.physics.diffraction import diffraction_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
 from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
+from boat_dynamics.physics.mooring import mooring_wrench
 from boat_dynamics.physics.propulsion import thrust
 from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
@@ -70,7 +71,13 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     if system.diffracting:  # potential-flow coefficients: rare, per boat
         scattered = _diffraction(system, state, contact)
         total = total + scattered
-    return (FleetForces(buoy, damp, drag, push, steer, scattered, weight, total),
+    tether = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
+    if system.mooring is not None:  # held on station: RAO runs
+        m = system.mooring
+        tether = mooring_wrench(m.stiffness, m.damping, m.anchor, state.position, rot,
+                                state.velocity, state.angular_velocity)
+        total = total + tether
+    return (FleetForces(buoy, damp, drag, push, steer, scattered, tether, weight, total),
             normals_ref)
 
 

@@ -15,6 +15,7 @@ from boat_dynamics.physics.control import ControlSettings
 from boat_dynamics.physics.hull import BoxHull
 from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.mooring import Mooring
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.radiation import RadiationMemory
 from boat_dynamics.physics.rigid_body import quat_from_euler, rotation_matrix
@@ -112,7 +113,9 @@ class BoatParams:
             integrated with the coupled mass matrix
             (:func:`boat_dynamics.physics.rigid_body.integrate_coupled`).
         radiation_memory: the Cummins radiation memory (:mod:`boat_dynamics.physics.radiation`),
-            padded to :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes, or None.
+            or None.
+        mooring: a soft mooring holding the boat on station (:mod:`.mooring`; the RAO runs
+            of :mod:`.seakeeping`), or None.
     """
 
     hull: BoxHull
@@ -139,6 +142,7 @@ class BoatParams:
     hydro: HydroCoefficients | None = None
     added_mass_matrix: np.ndarray | None = None
     radiation_memory: RadiationMemory | None = None
+    mooring: Mooring | None = None
 
 
 @dataclass(frozen=True)
@@ -185,7 +189,8 @@ class Forces:
     """Every wrench acting on the boat, body frame, about the centre of mass.
 
     ``total`` is the net wrench (the sources plus gravity) that the integrator uses;
-    ``diffraction`` is zero for a boat without potential-flow coefficients.
+    ``diffraction`` is zero for a boat without potential-flow coefficients, ``mooring`` for a
+    boat not moored.
     """
 
     buoyancy: Wrench
@@ -194,6 +199,7 @@ class Forces:
     thrust: Wrench
     rudder: Wrench
     diffraction: Wrench
+    mooring: Wrench
     gravity: Wrench
     total: Wrench
 

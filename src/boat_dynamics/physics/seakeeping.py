@@ -19,18 +19,24 @@ counter-clockwise): pi = head seas, pi / 2 = beam seas from starboard, 0 = follo
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
+from boat_dynamics.physics.mooring import soft_mooring
 from boat_dynamics.physics.rigid_body import inertia_tensor, quat_to_euler
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from ocean_sim.physics.waves import WaveComponent, WaveField, angular_frequency
 
-__all__ = ["Response", "potential_flow_rao", "regular_wave_response", "rigid_body_matrix"]
+__all__ = ["MOORING_PERIODS", "Response", "potential_flow_rao", "regular_wave_response",
+           "rigid_body_matrix"]
+
+#: The natural period of the soft mooring of :func:`regular_wave_response`, in wave periods:
+#: its spring then changes the surge and sway impedance at the wave's frequency by 1/15^2.
+MOORING_PERIODS = 15.0
 
 
 @dataclass(frozen=True)
@@ -56,13 +62,20 @@ class Response:
 
 def regular_wave_response(params: BoatParams, wavelength: float, direction: float,
                           amplitude: float, gravity: float = 9.81, depth: float = math.inf,
-                          dt: float = 0.01, settle: float = 20.0, periods: int = 6
-                          ) -> Response:
+                          dt: float = 0.01, settle: float = 20.0, periods: int = 6,
+                          tolerance: float = 0.01, max_time: float = 300.0) -> Response:
     """The boat's first-harmonic heave, roll and pitch in a regular wave (module docstring).
 
     The boat starts afloat at the origin heading +x (initialized here for this sea, so a
-    ``froude_krylov`` hull is panelled for this wavelength), runs ``settle`` s plus four
-    periods, then ``periods`` periods are analysed (the Fourier coefficient at omega).
+    ``froude_krylov`` hull is panelled for this wavelength), held there by a soft mooring of
+    :data:`MOORING_PERIODS` wave periods (at least 30 s; :mod:`.mooring`, as a towing tank
+    does: free, it would drift with the waves and meet them at another frequency), and runs
+    ``settle`` s plus four
+    periods; then windows of ``periods`` periods are analysed (the Fourier coefficient at
+    omega) until three in a row agree within ``tolerance`` (of the value, or of 2 % of the
+    wave's own scale, 1 m/m and k rad/m, for a motion near zero): a lightly damped mode near
+    resonance takes long to forget its start, and its beat with the wave (at the difference
+    of the frequencies) can make two windows agree by chance. At most ``max_time`` s.
 
     Args:
         params: the boat as a scenario gives it (``derive`` not yet applied) or derived.
@@ -72,27 +85,57 @@ def regular_wave_response(params: BoatParams, wavelength: float, direction: floa
         gravity: m/s^2.
         depth: m, water depth (inf = deep).
         dt: s, the step.
-        settle: s before the four periods and the analysis.
-        periods: periods analysed.
+        settle: s before the four periods and the first window.
+        periods: periods per window.
+        tolerance: relative agreement of three windows in a row.
+        max_time: s of simulated time at most.
     """
     wave = WaveComponent(amplitude, wavelength, direction, 0.0, 0.0)
     sea = WaveField((wave,), gravity, depth)
     omega = float(angular_frequency(wave.wavenumber, gravity, depth))
-    state = FleetState.stack([initial_state(params, np.zeros(3))])
-    system, state = pipeline.init(System.build([params]), state, sea)
     inputs, period = FleetInputs.stack([BoatInputs()]), 2 * math.pi / omega
-    record = round((settle + 4 * period) / dt)
-    steps = record + round(periods * period / dt)
-    rows, times = [], []
+    start = initial_state(params, np.zeros(3))
+    params = replace(params, mooring=soft_mooring(
+        np.array([start.position[0], start.position[1], 0.0]), _horizontal_mass(params),
+        max(MOORING_PERIODS * period, 30.0)))
+    system, state = pipeline.init(System.build([params]), FleetState.stack([start]), sea)
+    floor = 0.02 * np.array([1.0, wave.wavenumber, wave.wavenumber])
+    state = _run(system, state, inputs, sea, dt, round((settle + 4 * period) / dt))[0]
+    window = round(periods * period / dt)
+    history: list[np.ndarray] = []
+    while True:
+        state, motion = _run(system, state, inputs, sea, dt, window)
+        history.append(_first_harmonic(motion, omega) / amplitude)
+        last = np.array(history[-3:])
+        done = len(last) == 3 and np.all(
+            np.ptp(last, axis=0) <= tolerance * np.maximum(last[-1], floor))
+        if done or state.t + window * dt > max_time:
+            return Response(wavelength, direction, omega, *map(float, history[-1]))
+
+
+def _horizontal_mass(params: BoatParams) -> np.ndarray:
+    """(3,) surge, sway mass and yaw inertia with their (infinite-frequency) added mass."""
+    rigid = np.array([params.mass, params.mass, params.inertia[2]], dtype=float)
+    if params.hydro is not None:
+        return rigid + np.diag(params.hydro.added_mass_inf)[[0, 1, 5]]
+    return rigid + np.asarray(params.added_mass, dtype=float)[[0, 1, 5]]
+
+
+def _run(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField, dt: float,
+         steps: int) -> tuple[FleetState, np.ndarray]:
+    """The state after ``steps`` steps, and (steps, 4) t, heave, roll, pitch after each."""
+    rows = np.empty((steps, 4))
     for k in range(steps):
         state = pipeline.step(system, state, inputs, sea, dt).state
-        if k >= record:
-            rows.append([state.position[0, 2], *quat_to_euler(state.orientation[0])[:2]])
-            times.append(state.t)
-    x = np.array(rows)
-    first = np.exp(1j * omega * np.array(times)) @ (x - x.mean(axis=0))
-    heave, roll, pitch = 2.0 * np.abs(first) / len(times) / amplitude
-    return Response(wavelength, direction, omega, float(heave), float(roll), float(pitch))
+        rows[k] = (state.t, state.position[0, 2], *quat_to_euler(state.orientation[0])[:2])
+    return state, rows
+
+
+def _first_harmonic(motion: np.ndarray, omega: float) -> np.ndarray:
+    """(3,) amplitudes at omega of heave, roll, pitch from :func:`_run`'s rows."""
+    x = motion[:, 1:]
+    first = np.exp(1j * omega * motion[:, 0]) @ (x - x.mean(axis=0))
+    return 2.0 * np.abs(first) / motion.shape[0]
 
 
 def rigid_body_matrix(params: BoatParams) -> np.ndarray:

@@ -23,6 +23,7 @@ import numpy as np
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces
+from boat_dynamics.physics.mooring import Mooring
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.radiation import MAX_ORDER, RadiationMemory
 from boat_dynamics.physics.rigid_body import inertia_tensor
@@ -252,6 +253,8 @@ class System:
             :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes ((B, N) poles, (B, N, 6)
             input, (B, 6, N) output; zero for a boat without one), or None when no boat has
             one.
+        mooring: the boats' moorings stacked ((B, 3) anchor, stiffness, damping; zero for a
+            boat not moored), or None when no boat is moored.
     """
 
     params: tuple[BoatParams, ...]
@@ -276,6 +279,7 @@ class System:
     mass_matrix_inverse: np.ndarray | None = None
     inertia_tensor: np.ndarray | None = None
     memory: RadiationMemory | None = None
+    mooring: Mooring | None = None
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -308,7 +312,18 @@ class System:
             special=tuple(i for i, p in enumerate(ps) if p.control.mode != "dynamic"),
             diffracting=tuple(i for i, p in enumerate(ps) if p.hydro is not None),
             **_coupling(ps),
+            mooring=_moorings(ps),
         )
+
+
+def _moorings(ps: Sequence[BoatParams]) -> Mooring | None:
+    """The boats' moorings stacked ((B, 3) each), or None when none is moored."""
+    if all(p.mooring is None for p in ps):
+        return None
+    free = Mooring(np.zeros(3), np.zeros(3), np.zeros(3))
+    moorings = [free if p.mooring is None else p.mooring for p in ps]
+    return Mooring(*(np.array([getattr(m, f) for m in moorings], dtype=float)
+                     for f in ("anchor", "stiffness", "damping")))
 
 
 def _coupling(ps: Sequence[BoatParams]) -> dict:

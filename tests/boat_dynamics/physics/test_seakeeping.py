@@ -3,15 +3,17 @@ roll in beam seas.
 
 The boat with ``froude_krylov`` pressure and the Capytaine coefficient file
 (tests/data/hydro/box_4x2x1_d0.5.npz: diffraction, and radiation by the Cummins equation, A_inf
-6 x 6 and the fitted memory) is run in a small regular wave until steady; its motion amplitude
-per metre of wave is compared with Capytaine's RAO at the file's own frequencies (no
-interpolation), from 0.51 to 13 boat lengths. Asserted: heave within 15 % or 0.05 m/m, pitch
-and roll within 15 %, everywhere but two points near the pitch and roll resonances, where the
-response changes by a factor 3 between neighbouring frequencies: pitch at 1.3 L (measured
-+19 %) and roll at 1.55 L (measured +20 %; damping ratio 0.024). Measured elsewhere: heave
--4 to +8 % above 0.9 L, pitch -9 to +12 %, roll -1 to +7 %. With ``radiation: resonance``
-(constant coefficients at the natural frequencies) long-wave heave is 9-15 % low and long-wave
-roll 27-34 % high (no sway-roll coupling); one check keeps that option working.
+6 x 6 and the fitted memory) is run in a small regular wave, held on station by a soft mooring
+as in a towing tank (:func:`boat_dynamics.physics.seakeeping.regular_wave_response`), until its
+motion is periodic; its amplitude per metre of wave is compared with Capytaine's RAO at the
+file's own frequencies (no interpolation), from 0.51 to 13 boat lengths, resonances included.
+Asserted: the issue's bounds, 15 % (or 0.05 m/m for heave). Measured: heave -4 to +2 % down to
+1.55 L, +13 % at 1.3 L, within 0.01 m/m below; pitch -5 to +3 %; roll -5 to +2 % (the roll
+resonance, 1.55 L: +2 %). Free, without the mooring, a box in beam seas drifts sideways at
+0.04 m/s and the roll near resonance grows to +60 % as it meets the waves at another
+frequency. With ``radiation: resonance`` (constant coefficients at the natural frequencies)
+long-wave heave is 9-15 % low and long-wave roll 27-34 % high (no sway-roll coupling); one
+check keeps that option working.
 """
 
 import math
@@ -53,21 +55,15 @@ def _reference(index: int, direction: int) -> np.ndarray:
 # file index: omega rad/s, wavelength / L = 2 pi g / omega^2 / 4 m
 # 2: 1.09, 13 | 3: 1.39, 8.0 | 5: 1.97, 4.0 | 7: 2.56, 2.3 | 8: 2.86, 1.9 | 9: 3.15, 1.55
 # 10: 3.45, 1.3 | 11: 3.74, 1.1 | 12: 4.04, 0.94 | 14: 4.63, 0.72 | 16: 5.22, 0.57 | 17: 5.51, 0.51
-@pytest.mark.parametrize(("index", "check"), [
-    (2, "heave pitch"), (3, "heave pitch"), (5, "heave pitch"), (7, "heave pitch"),
-    (8, "heave pitch"), (9, "heave pitch"), (10, "heave"), (11, "heave pitch"),
-    (12, "heave pitch"), (14, "heave pitch"), (16, "heave pitch"), (17, "heave pitch"),
-])
-def test_head_sea_raos_of_the_box_follow_potential_flow(index, check):
+@pytest.mark.parametrize("index", [2, 3, 5, 7, 8, 9, 10, 11, 12, 14, 16, 17])
+def test_head_sea_raos_of_the_box_follow_potential_flow(index):
     rao = _reference(index, HEAD_SEAS)
     heave, _, pitch = _response(float(load_coefficients(BOX).omega[index]))
-    if "heave" in check:
-        assert heave == pytest.approx(rao[2], rel=0.15, abs=0.05)
-    if "pitch" in check:
-        assert pitch == pytest.approx(rao[4], rel=0.15)
+    assert heave == pytest.approx(rao[2], rel=0.15, abs=0.05)
+    assert pitch == pytest.approx(rao[4], rel=0.15)
 
 
-@pytest.mark.parametrize("index", [2, 3, 5, 7, 8, 10, 11, 12, 14, 16])
+@pytest.mark.parametrize("index", [2, 3, 5, 7, 8, 9, 10, 11, 12, 14, 16])
 def test_beam_sea_roll_of_the_box_follows_potential_flow(index):
     rao = _reference(index, BEAM_SEAS)
     _, roll, _ = _response(float(load_coefficients(BOX).omega[index]), a=0.01,

@@ -1,0 +1,169 @@
+"""`boatsim rao SCENARIO`: a boat's heave, roll and pitch RAOs, simulated and by potential flow.
+
+Each point runs the boat alone in one small regular wave
+(:func:`boat_dynamics.physics.seakeeping.regular_wave_response`); when the boat has a
+potential-flow coefficient file, the frequency-domain RAO of that file is printed and drawn
+beside it (:func:`boat_dynamics.physics.seakeeping.potential_flow_rao`), so a user can check
+their own hull against theory.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from boat_dynamics.physics.scenario import BoatSpec, Scenario
+from boat_dynamics.physics.seakeeping import (
+    Response,
+    potential_flow_rao,
+    regular_wave_response,
+    rigid_body_matrix,
+)
+
+__all__ = ["DEFAULT_DIRECTIONS_DEG", "DEFAULT_WAVELENGTHS", "RaoError", "RaoPoint",
+           "format_table", "plot_raos", "rao_points"]
+
+#: Wavelengths, in boat lengths, of a default run.
+DEFAULT_WAVELENGTHS = (0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0)
+#: Wave directions (travelling toward, relative to the bow) of a default run: head, beam seas.
+DEFAULT_DIRECTIONS_DEG = (180.0, 90.0)
+
+
+class RaoError(ValueError):
+    """A request ``boatsim rao`` cannot run: which option, which value, what is allowed."""
+
+
+@dataclass(frozen=True)
+class RaoPoint:
+    """One simulated response and, with coefficients, potential flow's (heave, roll, pitch).
+
+    Attributes:
+        response: the simulated first harmonic per metre of wave.
+        theory: (3,) |heave| m/m, |roll| and |pitch| rad/m by potential flow, or None.
+    """
+
+    response: Response
+    theory: np.ndarray | None
+
+
+def _boat(scenario: Scenario, name: str | None) -> BoatSpec:
+    """The boat called ``name`` (None: the first one)."""
+    if name is None:
+        return scenario.boats[0]
+    for boat in scenario.boats:
+        if boat.name == name:
+            return boat
+    names = ", ".join(repr(b.name) for b in scenario.boats)
+    raise RaoError(f"--boat: {name!r} is not a boat of the scenario (its boats: {names})")
+
+
+def _check(wavelengths: Sequence[float], directions_deg: Sequence[float],
+           amplitude: float | None) -> None:
+    for value in wavelengths:
+        if not (math.isfinite(value) and 0.05 <= value <= 100.0):
+            raise RaoError(f"--wavelengths: {value!r} is not allowed: wavelengths are in boat "
+                           f"lengths, from 0.05 to 100")
+    for value in directions_deg:
+        if not math.isfinite(value):
+            raise RaoError(f"--directions-deg: {value!r} is not allowed: a finite angle")
+    if amplitude is not None and not (math.isfinite(amplitude) and amplitude > 0.0):
+        raise RaoError(f"--amplitude: {amplitude!r} is not allowed: metres, > 0")
+
+
+def rao_points(scenario: Scenario, boat: str | None = None,
+               wavelengths: Sequence[float] = DEFAULT_WAVELENGTHS,
+               directions_deg: Sequence[float] = DEFAULT_DIRECTIONS_DEG,
+               amplitude: float | None = None) -> list[RaoPoint]:
+    """Run the scenario's boat in each regular wave (direction-major order).
+
+    Args:
+        scenario: as read (its sea is replaced by each regular wave; its gravity and depth
+            are kept).
+        boat: the boat's name (None: the first).
+        wavelengths: in boat lengths.
+        directions_deg: the waves' direction of travel relative to the bow, degrees
+            (180 head seas, 90 beam seas from starboard, 0 following seas).
+        amplitude: m; default 0.5 % of the boat length, at most a steepness k a of 0.05.
+
+    Raises:
+        RaoError: an option out of range or an unknown boat.
+    """
+    _check(wavelengths, directions_deg, amplitude)
+    spec = _boat(scenario, boat)
+    params, sea = spec.params, scenario.sea
+    length = params.hull.length
+    mass = rigid_body_matrix(params)
+    points = []
+    for direction in np.radians(np.asarray(directions_deg, dtype=float)):
+        for multiple in wavelengths:
+            wavelength = multiple * length
+            a = amplitude or min(0.005 * length, 0.05 * wavelength / (2 * math.pi))
+            r = regular_wave_response(params, wavelength, float(direction), a,
+                                      gravity=sea.gravity, depth=sea.depth)
+            theory = None
+            if params.hydro is not None:
+                theory = np.abs(potential_flow_rao(params.hydro, mass, r.omega,
+                                                   float(direction))[2:5])
+            points.append(RaoPoint(r, theory))
+    return points
+
+
+def format_table(points: Sequence[RaoPoint], length: float) -> str:
+    """The points as a text table: heave m/m, roll and pitch deg/m, potential flow beside."""
+    lines = ["direction_deg  lambda/L  lambda_m  omega_rad_s  heave_m/m (pf)  "
+             "roll_deg/m (pf)  pitch_deg/m (pf)"]
+    for p in points:
+        r = p.response
+        sim = (r.heave, math.degrees(r.roll), math.degrees(r.pitch))
+        pf = (("-",) * 3 if p.theory is None
+              else (f"{p.theory[0]:.3f}", f"{math.degrees(p.theory[1]):.2f}",
+                    f"{math.degrees(p.theory[2]):.2f}"))
+        lines.append(f"{math.degrees(r.direction):13.1f}  {r.wavelength / length:8.2f}  "
+                     f"{r.wavelength:8.2f}  {r.omega:11.3f}  {sim[0]:6.3f} ({pf[0]:>6})  "
+                     f"{sim[1]:7.2f} ({pf[1]:>6})  {sim[2]:7.2f} ({pf[2]:>6})")
+    return "\n".join(lines)
+
+
+def plot_raos(points: Sequence[RaoPoint], length: float, out: str | Path,
+              title: str = "") -> Path:
+    """Heave, roll and pitch RAOs against lambda / L (PNG, headless); returns the path.
+
+    Markers: simulated; lines: potential flow (where the boat has coefficients).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5), constrained_layout=True)
+    directions = sorted({p.response.direction for p in points}, reverse=True)
+    for direction in directions:
+        row = sorted((p for p in points if p.response.direction == direction),
+                     key=lambda p: p.response.wavelength)
+        x = [p.response.wavelength / length for p in row]
+        sim = np.array([(p.response.heave, math.degrees(p.response.roll),
+                         math.degrees(p.response.pitch)) for p in row])
+        label = f"{math.degrees(direction):g} deg"
+        for k, ax in enumerate(axes):
+            line = ax.plot(x, sim[:, k], "o", label=f"boatsim, {label}")[0]
+            if all(p.theory is not None for p in row):
+                pf = np.array([p.theory for p in row]) * np.array([1.0, 180 / math.pi,
+                                                                   180 / math.pi])
+                ax.plot(x, pf[:, k], "--", color=line.get_color(),
+                        label=f"potential flow, {label}")
+    for ax, name in zip(axes, ("heave, m/m", "roll, deg/m", "pitch, deg/m"), strict=True):
+        ax.set_xscale("log")
+        ax.set_xlabel("wavelength / boat length")
+        ax.set_ylabel(name)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize="small")
+    fig.suptitle(title or "RAOs (centre of mass; direction the waves travel toward, "
+                          "relative to the bow: 180 head seas)")
+    out = Path(out)
+    fig.savefig(out, dpi=100)
+    plt.close(fig)
+    return out

@@ -1,0 +1,69 @@
+"""`boatsim rao`: the table, the PNG, potential flow beside the simulation, and bad requests."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from boat_dynamics.cli import main
+
+ROOT = Path(__file__).resolve().parents[3]
+BOX = ROOT / "tests" / "data" / "hydro" / "box_4x2x1_d0.5.npz"
+
+
+def _rows(out: str) -> list[list[str]]:
+    lines = out.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("direction_deg"))
+    return [line.replace("(", " ").replace(")", " ").split()
+            for line in lines[start + 1:] if line.strip() and line.strip()[0].isdigit()]
+
+
+def test_the_default_scenario_runs_and_draws_a_png(tmp_path, capsys):
+    out_png = tmp_path / "raos.png"
+    assert main(["rao", "--wavelengths", "3", "10", "--directions-deg", "180",
+                 "-o", str(out_png)]) == 0
+    out = capsys.readouterr().out
+    rows = _rows(out)
+    assert len(rows) == 2
+    assert "none: no hydrodynamics.coefficients" in out
+    assert out_png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the default hull in a 10 L head sea: heave follows the wave (RAO 1 within 10 %)
+    assert float(rows[1][4]) == pytest.approx(1.0, rel=0.1)
+
+
+def test_a_boat_with_coefficients_is_printed_beside_potential_flow(tmp_path, capsys):
+    scenario = tmp_path / "box.yaml"
+    scenario.write_text(
+        "boats:\n  - {name: box, center_of_mass: [0, 0, -0.2],\n"
+        "     buoyancy: {pressure: froude_krylov},\n"
+        f"     hydrodynamics: {{coefficients: {BOX}}}}}\n")
+    assert main(["rao", str(scenario), "--boat", "box", "--wavelengths", "5",
+                 "--directions-deg", "180", "90", "-o", str(tmp_path / "r.png")]) == 0
+    rows = _rows(capsys.readouterr().out)
+    head, beam = (np.array(r, dtype=float) for r in rows)
+    # columns: direction, lambda/L, lambda, omega, heave, (pf), roll, (pf), pitch, (pf)
+    assert head[0] == 180.0 and beam[0] == 90.0
+    assert head[3] == pytest.approx(math.sqrt(2 * math.pi * 9.81 / 20.0), rel=1e-3)
+    assert head[4] == pytest.approx(head[5], rel=0.15)  # heave, head seas
+    assert head[8] == pytest.approx(head[9], rel=0.15)  # pitch
+    assert beam[6] == pytest.approx(beam[7], rel=0.15)  # roll, beam seas
+    assert head[9] > 10.0 and beam[7] > 10.0  # deg/m: a real motion, not two zeros
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["--wavelengths", "0"], "--wavelengths: 0.0 is not allowed"),
+    (["--amplitude", "-1"], "--amplitude: -1.0 is not allowed: metres, > 0"),
+    (["--boat", "nobody"], "--boat: 'nobody' is not a boat of the scenario"),
+])
+def test_a_bad_request_is_refused_naming_the_option(tmp_path, capsys, args, message):
+    assert main(["rao", *args, "-o", str(tmp_path / "r.png")]) == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "r.png").exists()
+
+
+def test_a_bad_scenario_is_refused_naming_the_key(tmp_path, capsys):
+    scenario = tmp_path / "bad.yaml"
+    scenario.write_text("boats:\n  - {hydrodynamics: {radiation: cummins}}\n")
+    assert main(["rao", str(scenario)]) == 2
+    assert "hydrodynamics.radiation" in capsys.readouterr().err
