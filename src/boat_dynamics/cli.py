@@ -42,6 +42,7 @@ def _parser() -> argparse.ArgumentParser:
     _add_query(verbs)
     _add_bag_verbs(verbs)
     _add_rao(verbs)
+    _add_hydro(verbs)
     teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
     teleop.add_argument("--ns", default="", metavar="NAME",
                         help="the boat's namespace (default: the root namespace)")
@@ -178,6 +179,45 @@ def _rao(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_hydro(verbs) -> None:
+    """``hydro``: a scenario's potential-flow coefficient files."""
+    hydro = verbs.add_parser(
+        "hydro", help="potential-flow coefficient files of the hulls",
+        description="For each boat of SCENARIO, find its hull's coefficient file (keyed by "
+                    "mesh, mass properties and water) where `coefficients: auto` looks, or "
+                    "solve it with Capytaine (pip install 'boatsim[bem]') into DIR. Exit 2 "
+                    "on a bad scenario or option, or when a solve needs Capytaine.")
+    hydro.add_argument("scenario", nargs="?", metavar="SCENARIO",
+                       help="scenario file (default: the default scenario)")
+    hydro.add_argument("--boat", nargs="+", metavar="NAME", help="only these boats")
+    hydro.add_argument("-o", "--output", metavar="DIR",
+                       help="where new files go (default: hydro/ beside the scenario)")
+    hydro.add_argument("--panel-size", type=_finite, metavar="M",
+                       help="largest panel edge, m (default: L/40, at most B/16)")
+    hydro.add_argument("--force", action="store_true",
+                       help="solve again even if a file of the hull exists")
+
+
+def _hydro(args: argparse.Namespace) -> int:
+    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.tools.hydro import HydroError, coefficient_files
+
+    path = Path(args.scenario or default_scenario_path())
+    try:
+        scenario = load_scenario(path)
+        files = coefficient_files(scenario, path.resolve().parent, args.boat,
+                                  Path(args.output) if args.output else None, args.force,
+                                  args.panel_size, report=lambda line: print(line, flush=True))
+    except (ScenarioError, HydroError, ValueError) as exc:
+        print(f"boatsim hydro: error: {exc}", file=sys.stderr)
+        return 2
+    for f in files:
+        how = "found" if f.seconds is None else f"made in {f.seconds:.0f} s"
+        print(f"boat {f.boat or '(root)'}: {f.path} ({how}; key {f.key})")
+    print("use them with `hydrodynamics: {coefficients: auto}` (or the path) in the boat")
+    return 0
+
+
 def _compare(args: argparse.Namespace) -> int:
     from boat_dynamics.tools.bags import BagError, compare_bags
 
@@ -311,6 +351,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _compare(args)
         if args.verb == "rao":
             return _rao(args)
+        if args.verb == "hydro":
+            return _hydro(args)
         if args.verb == "record":
             from boat_dynamics.tools.recording import RecordError, record
 

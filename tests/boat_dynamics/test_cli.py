@@ -4,7 +4,7 @@ import pytest
 
 from boat_dynamics.cli import main
 
-VERBS = ("run", "query", "record", "compare", "plot", "replay", "rao", "teleop")
+VERBS = ("run", "query", "record", "compare", "plot", "replay", "rao", "hydro", "teleop")
 
 
 def test_help_lists_the_public_verbs_and_hides_the_internal_one(capsys):

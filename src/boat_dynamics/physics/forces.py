@@ -95,18 +95,20 @@ def _diffraction(system: System, state: FleetState, contact: Contact) -> Wrench:
 
 
 def _at_reference(system: System, contact: Contact) -> tuple[np.ndarray, np.ndarray]:
-    """Water velocity and surface normal at the boats' hull reference points.
+    """The water velocity the damping is taken against, and the surface normals.
 
     Returns:
-        (B, 3) m/s, the water the damping is taken against (the surface water particle's
-        velocity, plus the sea's Stokes drift for boats with ``stokes_drift``), and (B, 3)
-        unit normals; world frame.
+        (B, 3) m/s, the water's velocity (over the wetted hull, or the surface water
+        particle's above the hull reference point: ``water_velocity``), plus the sea's Stokes
+        drift for boats with ``stokes_drift``; and (B, 3) unit normals at the reference
+        points; world frame.
     """
     water_velocity = np.zeros((system.count, 3))
     normals = np.zeros((system.count, 3))
     for c in contact.groups:
         g = c.group
-        water_velocity[g.index] = c.at_reference.velocities
+        water_velocity[g.index] = (c.at_reference.velocities if c.water_velocity is None
+                                   else c.water_velocity)
         normals[g.index] = c.at_reference.normals
         if g.stokes_drift:
             water_velocity[g.index] += contact.sea.filtered(g.min_wavelength

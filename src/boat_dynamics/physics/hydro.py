@@ -17,13 +17,18 @@ Systems" (2002), ch. 5; the Capytaine documentation (Ancellin & Dias 2019).
 
 from __future__ import annotations
 
+import hashlib
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DOFS", "HydroCoefficients", "HydroFileError", "load_coefficients"]
+__all__ = ["DOFS", "SHIPPED_COEFFICIENTS", "HydroCoefficients", "HydroFileError",
+           "coefficient_directories", "find_coefficients", "hydro_key", "load_coefficients"]
+
+#: The coefficient files shipped with boatsim (its scenarios' hulls), named ``*_<key>.npz``.
+SHIPPED_COEFFICIENTS = Path(__file__).resolve().parents[1] / "data" / "hydro"
 
 #: The rigid-body degrees of freedom, in the order of every 6-vector and 6 x 6 matrix.
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -173,3 +178,62 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
     if sizes["W"] < 2 or np.any(np.diff(arrays["omega"]) <= 0.0) or arrays["omega"][0] <= 0.0:
         raise HydroFileError(f"{p}: omega must hold at least two increasing values > 0")
     return HydroCoefficients(**{name: arrays[name] for name in _SHAPES})
+
+
+def _canonical(name: str, value, dtype: str) -> bytes:
+    """Bytes of one named array: name, dtype, shape and little-endian data."""
+    a = np.asarray(value, dtype=np.float64 if dtype == "<f8" else np.int64)
+    if dtype == "<f8":
+        a = np.round(a, 9) + 0.0  # + 0.0 maps -0.0 to 0.0
+    a = np.ascontiguousarray(a.astype(dtype))
+    return f"{name}:{dtype}:{a.shape}:".encode() + a.tobytes()
+
+
+def hydro_key(vertices: np.ndarray, faces: np.ndarray, mass: float,
+              center_of_mass: np.ndarray, inertia_matrix: np.ndarray, water_density: float,
+              gravity: float, depth: float) -> str:
+    """The identity of a coefficient file's inputs: the hull mesh, its mass, the water.
+
+    Args:
+        vertices: (V, 3) m, body frame (the scenario's mesh, before any refinement).
+        faces: (F, 3) vertex indices.
+        mass: kg.
+        center_of_mass: (3,) m, body frame.
+        inertia_matrix: (6, 6) rigid-body mass matrix about the centre of mass.
+        water_density: kg/m^3.
+        gravity: m/s^2.
+        depth: water depth, m (``inf`` for deep water).
+
+    Returns:
+        16 hex characters: the start of the sha256 of a canonical byte string of the inputs
+        (a version tag, then each input's name, dtype, shape and little-endian data: floats
+        rounded to 1e-9 as float64, faces as int64).
+    """
+    parts = [("vertices", vertices, "<f8"), ("faces", faces, "<i8"), ("mass", mass, "<f8"),
+             ("center_of_mass", center_of_mass, "<f8"),
+             ("inertia_matrix", inertia_matrix, "<f8"),
+             ("water_density", water_density, "<f8"), ("gravity", gravity, "<f8"),
+             ("depth", depth, "<f8")]
+    digest = hashlib.sha256(b"boatsim-hydro-v1\n")
+    for name, value, dtype in parts:
+        digest.update(_canonical(name, value, dtype))
+    return digest.hexdigest()[:16]
+
+
+def coefficient_directories(scenario_dir: Path) -> tuple[Path, ...]:
+    """Where ``coefficients: auto`` looks: the scenario's ``hydro/``, then the shipped files.
+
+    ``boatsim hydro SCENARIO`` writes into the first; :data:`SHIPPED_COEFFICIENTS` is the
+    second.
+    """
+    return (Path(scenario_dir) / "hydro", SHIPPED_COEFFICIENTS)
+
+
+def find_coefficients(key: str, directories: tuple[Path, ...]) -> Path | None:
+    """The first file named ``*_<key>.npz`` in ``directories`` (sorted by name), or None."""
+    for directory in directories:
+        found = sorted(Path(directory).glob(f"*_{key}.npz"))
+        if found:
+            return found[0]
+    return None
+

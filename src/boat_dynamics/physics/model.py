@@ -12,13 +12,13 @@ import numpy as np
 
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.control import ControlSettings
-from boat_dynamics.physics.hull import BoxHull
-from boat_dynamics.physics.hydro import HydroCoefficients
+from boat_dynamics.physics.hull import BoxHull, HullMesh, box_mesh
+from boat_dynamics.physics.hydro import HydroCoefficients, hydro_key
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.mooring import Mooring
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.radiation import RadiationMemory
-from boat_dynamics.physics.rigid_body import quat_from_euler, rotation_matrix
+from boat_dynamics.physics.rigid_body import mass_matrix, quat_from_euler, rotation_matrix
 from boat_dynamics.physics.rudder import Rudder
 from boat_dynamics.physics.wrench import Wrench
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
@@ -32,6 +32,8 @@ __all__ = [
     "Derivation",
     "Forces",
     "RadiationModel",
+    "coefficients_key",
+    "hull_mesh",
     "initial_state",
     "reference_pose",
 ]
@@ -43,6 +45,16 @@ __all__ = [
 #: (:func:`boat_dynamics.physics.tuning.potential_flow_at_resonance`), for comparison.
 RadiationModel = Literal["cummins", "resonance"]
 RADIATION_MODELS: tuple[RadiationModel, ...] = ("cummins", "resonance")
+
+
+#: The water velocity the damping, hull drag and rudder take the boat's velocity against:
+#: ``hull``, the mean over the wetted hull (or submerged sample points) of linear theory's
+#: orbital velocity at each part's depth (:func:`ocean_sim.physics.waves.orbital_velocity`);
+#: ``reference_point``, the surface water particle's above the hull reference point (the
+#: default for now: in short waves that velocity, not the waves' excitation, drives the hull;
+#: ``hull`` becomes the default with the ``froude_krylov`` pressure, issue 10).
+WaterVelocity = Literal["hull", "reference_point"]
+WATER_VELOCITIES: tuple[WaterVelocity, ...] = ("hull", "reference_point")
 
 
 @dataclass(frozen=True)
@@ -116,6 +128,8 @@ class BoatParams:
             or None.
         mooring: a soft mooring holding the boat on station (:mod:`.mooring`; the RAO runs
             of :mod:`.seakeeping`), or None.
+        water_velocity: where the water velocity of the damping is taken
+            (:data:`WaterVelocity`).
     """
 
     hull: BoxHull
@@ -143,6 +157,7 @@ class BoatParams:
     added_mass_matrix: np.ndarray | None = None
     radiation_memory: RadiationMemory | None = None
     mooring: Mooring | None = None
+    water_velocity: WaterVelocity = "reference_point"
 
 
 @dataclass(frozen=True)
@@ -234,3 +249,27 @@ def reference_pose(params: BoatParams, state: BoatState) -> tuple[np.ndarray, np
     """World position (3,) m of the hull reference point, and the orientation (4,)."""
     r = rotation_matrix(state.orientation)
     return state.position - r @ params.center_of_mass, state.orientation
+
+
+def hull_mesh(params: BoatParams) -> HullMesh:
+    """The boat's hull mesh: the mesh model's, or the box of a sample-point boat."""
+    if isinstance(params.buoyancy, MeshBuoyancy):
+        return params.buoyancy.mesh
+    return box_mesh(params.hull)
+
+
+def coefficients_key(params: BoatParams, depth: float) -> str:
+    """The key of the boat's potential-flow coefficient file (:func:`.hydro.hydro_key`).
+
+    Of the parameters as a scenario gives them: ``pipeline.init`` may refine a
+    ``froude_krylov`` hull's mesh, which is the same hull.
+
+    Args:
+        params: the boat, before ``pipeline.init``.
+        depth: m, the water depth (inf = deep).
+    """
+    mesh = hull_mesh(params)
+    return hydro_key(mesh.vertices, mesh.faces, params.mass, params.center_of_mass,
+                     mass_matrix(params.mass, params.inertia, params.inertia_products),
+                     params.water_density, params.gravity, depth)
+

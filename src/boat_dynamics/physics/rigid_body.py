@@ -21,6 +21,7 @@ __all__ = [
     "inertia_tensor",
     "integrate",
     "integrate_coupled",
+    "mass_matrix",
     "quat_from_euler",
     "quat_multiply",
     "quat_to_euler",
@@ -115,6 +116,21 @@ def inertia_tensor(moments: np.ndarray, products: np.ndarray) -> np.ndarray:
     ixy, ixz, iyz = -products[..., 0], -products[..., 1], -products[..., 2]
     return np.stack([ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz], axis=-1).reshape(
         (*np.shape(ixx), 3, 3))
+
+
+def mass_matrix(mass: float, moments: np.ndarray, products: np.ndarray) -> np.ndarray:
+    """(6, 6) rigid-body mass matrix about the centre of mass, body axes (Fossen 2011, 3.44).
+
+    Args:
+        mass: kg.
+        moments: (3,) kg m^2, [Ixx, Iyy, Izz].
+        products: (3,) kg m^2, [Ixy, Ixz, Iyz] (:func:`inertia_tensor`).
+    """
+    out = np.zeros((6, 6))
+    out[:3, :3] = mass * np.eye(3)
+    out[3:, 3:] = inertia_tensor(np.asarray(moments, dtype=float),
+                                 np.asarray(products, dtype=float))
+    return out
 
 
 def _quat_exp(rotation_vector: np.ndarray) -> np.ndarray:

@@ -27,7 +27,7 @@ from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.hydro import HydroCoefficients
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.mooring import soft_mooring
-from boat_dynamics.physics.rigid_body import inertia_tensor, quat_to_euler
+from boat_dynamics.physics.rigid_body import mass_matrix, quat_to_euler
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from ocean_sim.physics.waves import WaveComponent, WaveField, angular_frequency
 
@@ -140,11 +140,7 @@ def _first_harmonic(motion: np.ndarray, omega: float) -> np.ndarray:
 
 def rigid_body_matrix(params: BoatParams) -> np.ndarray:
     """(6, 6) the boat's rigid-body mass matrix about its centre of mass, body axes."""
-    matrix = np.zeros((6, 6))
-    matrix[:3, :3] = params.mass * np.eye(3)
-    matrix[3:, 3:] = inertia_tensor(np.asarray(params.inertia, dtype=float),
-                                    np.asarray(params.inertia_products, dtype=float))
-    return matrix
+    return mass_matrix(params.mass, params.inertia, params.inertia_products)
 
 
 def potential_flow_rao(hydro: HydroCoefficients, mass_matrix: np.ndarray, omega: float,

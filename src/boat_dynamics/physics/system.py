@@ -22,7 +22,7 @@ import numpy as np
 
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces
+from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces, WaterVelocity
 from boat_dynamics.physics.mooring import Mooring
 from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.radiation import MAX_ORDER, RadiationMemory
@@ -153,7 +153,7 @@ def _group_key(p: BoatParams) -> tuple:
     b = p.buoyancy
     kind = "mesh" if isinstance(b, MeshBuoyancy) else "points"
     return (kind, _structure(b), _structure(p.propulsion), _structure(p.rudder),
-            p.stokes_drift, p.min_wavelength, p.wave_precision)
+            p.stokes_drift, p.min_wavelength, p.wave_precision, p.water_velocity)
 
 
 @dataclass(frozen=True)
@@ -175,6 +175,7 @@ class Group:
         stokes_drift: add the Stokes drift of the (filtered) sea to the water velocity.
         min_wavelength: m, the group's wave filter.
         wave_precision: the precision of the group's surface queries.
+        water_velocity: where its damping takes the water's velocity.
     """
 
     index: np.ndarray
@@ -190,6 +191,7 @@ class Group:
     stokes_drift: bool
     min_wavelength: float
     wave_precision: Precision
+    water_velocity: WaterVelocity
 
     @classmethod
     def build(cls, params: Sequence[BoatParams], index: np.ndarray) -> Group:
@@ -215,7 +217,7 @@ class Group:
         return cls(index, mesh, points, body, owner, faces, face_owner,
                    _stack([p.propulsion for p in params]), _stack([p.rudder for p in params]),
                    np.array([p.hull.length for p in params]), first.stokes_drift,
-                   first.min_wavelength, first.wave_precision)
+                   first.min_wavelength, first.wave_precision, first.water_velocity)
 
 
 @dataclass(frozen=True)

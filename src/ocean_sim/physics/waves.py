@@ -42,6 +42,7 @@ __all__ = [
     "component_phases",
     "displace",
     "find_rest_positions",
+    "orbital_velocity",
     "pressure_head",
     "sample_surface",
     "slope_orbit_velocity",
@@ -598,6 +599,56 @@ def pressure_head(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray, z: np
         decay = (np.exp(k_zs) * (1.0 + np.exp(-2.0 * (k_zs + ar.k * h)))
                  / (1.0 + np.exp(-2.0 * ar.k * h)))
     return (cos_theta * decay) @ ar.a - z
+
+
+def _stretched_decay(wf: WaveField, eta: np.ndarray, z: np.ndarray
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """(N, M) horizontal and vertical depth decays of linear orbital velocity, Wheeler-stretched.
+
+    Deep water: e^{k z_s} both. Depth h: cosh(k (z_s + h)) / sinh(k h) and
+    sinh(k (z_s + h)) / sinh(k h) (Dean & Dalrymple 1991, eqs. 4.16-4.17), written with
+    exponentials that do not overflow for k h > 710.
+    """
+    ar = wf.arrays
+    if math.isinf(wf.depth):
+        decay = np.exp(np.multiply.outer(np.minimum(z - eta, 0.0), ar.k))
+        return decay, decay
+    h = wf.depth
+    k_zs = np.multiply.outer(np.clip(h * (z - eta) / (h + eta), -h, 0.0), ar.k)
+    grow, fall = np.exp(k_zs), np.exp(-2.0 * (k_zs + ar.k * h))
+    norm = 1.0 - np.exp(-2.0 * ar.k * h)
+    return grow * (1.0 + fall) / norm, grow * (1.0 - fall) / norm
+
+
+def orbital_velocity(wf: WaveField, xy: np.ndarray, heights: np.ndarray, z: np.ndarray,
+                     t: float) -> np.ndarray:
+    """(N, 3) m/s, world velocity of the water at points below the surface, linear theory.
+
+    Each component's Airy particle velocity (Dean & Dalrymple 1991, eqs. 4.16-4.17; Newman,
+    "Marine Hydrodynamics", sec. 6.3): a omega cos(theta) E_h(z_s) along its direction and
+    a omega sin(theta) E_v(z_s) upward, with theta = k D . p - omega t + phi at the point's
+    own horizontal position (linear theory does not tell a particle's rest position from
+    where it is) and Wheeler stretching as in :func:`pressure_head`, so that at the surface
+    the vertical velocity is the Gerstner surface's own. Zero in still water.
+
+    Args:
+        wf: the sea state (already filtered to the components acting on the body).
+        xy: (N, 2) m, the points' horizontal positions.
+        heights: (N,) m, the surface height eta above each point.
+        z: (N,) m, the points' heights.
+        t: simulation time, s.
+    """
+    z = np.asarray(z, dtype=float)
+    out = np.zeros((z.shape[0], 3))
+    if not wf.components:
+        return out
+    ar = wf.arrays
+    theta = component_phases(wf, xy, t)
+    horizontal, vertical = _stretched_decay(wf, np.asarray(heights, dtype=float), z)
+    speed = horizontal * np.cos(theta) @ np.diag(ar.a * ar.omega)
+    out[:, 0], out[:, 1] = speed @ ar.dx, speed @ ar.dy
+    out[:, 2] = (vertical * np.sin(theta)) @ (ar.a * ar.omega)
+    return out
 
 
 def stokes_drift(wf: WaveField, depth_below_surface: float = 0.0) -> np.ndarray:

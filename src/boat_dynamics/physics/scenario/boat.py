@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -11,13 +12,21 @@ import numpy as np
 
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
-from boat_dynamics.physics.hydro import HydroCoefficients, HydroFileError, load_coefficients
+from boat_dynamics.physics.hydro import (
+    HydroCoefficients,
+    HydroFileError,
+    coefficient_directories,
+    find_coefficients,
+    load_coefficients,
+)
 from boat_dynamics.physics.model import (
     RADIATION_MODELS,
+    WATER_VELOCITIES,
     BoatParams,
     BoatState,
     Derivation,
     RadiationModel,
+    coefficients_key,
     initial_state,
 )
 from boat_dynamics.physics.rigid_body import inertia_tensor
@@ -42,34 +51,22 @@ _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "b
 
 
 def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
-          base_dir: Path) -> BoatSpec:
-    """One boat of ``boats``: each block read and checked in turn, in the order of the keys."""
+               base_dir: Path, depth: float = math.inf) -> BoatSpec:
+    """One boat of ``boats``: each block read and checked in turn, in the order of the keys.
+
+    ``depth`` (m) is the sea's: a coefficient file is keyed by it (``coefficients: auto``).
+    """
     d = mapping(raw, key)
     only(d, key, _BOAT_KEYS)
     name = _boat_name(d, key, lone)
     hull, mesh = _hull(mapping(d.get("hull"), f"{key}.hull"), f"{key}.hull", base_dir)
     mass, com, inertia, products = _mass_properties(d, key, sim, mesh)
     buoyancy = buoyancy_block(mapping(d.get("buoyancy"), f"{key}.buoyancy"), f"{key}.buoyancy",
-                         hull, mesh)
+                              hull, mesh)
     dk = f"{key}.damping"
     dd = mapping(d.get("damping"), dk)
     linear, quadratic, decay, ratio = _damping(dd, dk)
-    added = vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0)
-    propulsion = propulsion_block(mapping(d.get("propulsion"), f"{key}.propulsion"),
-                             f"{key}.propulsion", hull)
     rudder = rudder_block(mapping(d.get("rudder"), f"{key}.rudder"), f"{key}.rudder", hull)
-    keel_rate = keel_block(mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel")
-    control = control_block(d, key)
-    coefficients, model = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics",
-                                         base_dir, com)
-    if coefficients is not None and "critical_ratio" not in dd:
-        ratio = None  # the radiation damping replaces the default critical ratio
-    radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
-    if model == "cummins" and np.any(added != 0.0):
-        raise ScenarioError(f"{key}.added_mass", d.get("added_mass"),
-                            "must be zero (or absent) with hydrodynamics.radiation cummins, "
-                            "which takes the added mass from the coefficients; or choose "
-                            "radiation: resonance")
     ik = f"{key}.initial_pose"
     idd = mapping(d.get("initial_pose"), ik)
     only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
@@ -77,20 +74,40 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         hull=hull, mass=mass, center_of_mass=com, inertia=inertia, inertia_products=products,
         buoyancy=buoyancy,
         damping_linear=linear, damping_quadratic=quadratic, damping_decay=decay,
-        added_mass=added, propulsion=propulsion, rudder=rudder,
-        water_density=sim.water_density, gravity=sim.gravity,
+        added_mass=vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0),
+        propulsion=propulsion_block(mapping(d.get("propulsion"), f"{key}.propulsion"),
+                                    f"{key}.propulsion", hull),
+        rudder=rudder, water_density=sim.water_density, gravity=sim.gravity,
         min_wavelength=number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
         wave_precision=sim.wave_precision,
-        keel_rate=keel_rate,
+        keel_rate=keel_block(mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel"),
         stokes_drift=flag(d, "stokes_drift", key, False),
-        control=control,
-        derive=Derivation(critical_ratio=ratio, quadratic="quadratic" not in dd,
-                          added_mass=model == "resonance" and "added_mass" not in d,
-                          radiation_damping=radiation, memory=model == "cummins"),
-        hydro=coefficients,
+        control=control_block(d, key),
+        water_velocity=choice(dd, "water_velocity", dk, "reference_point", WATER_VELOCITIES),
     )
+    params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth)
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
+
+
+def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
+                        dd: Mapping[str, Any], ratio: np.ndarray | None, base_dir: Path,
+                        depth: float) -> BoatParams:
+    """``params`` with its coefficient file (if any) and what ``pipeline.init`` derives."""
+    coefficients, model = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics",
+                                         base_dir, params, depth)
+    if coefficients is not None and "critical_ratio" not in dd:
+        ratio = None  # the radiation damping replaces the default critical ratio
+    radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
+    if model == "cummins" and np.any(params.added_mass != 0.0):
+        raise ScenarioError(f"{key}.added_mass", d.get("added_mass"),
+                            "must be zero (or absent) with hydrodynamics.radiation cummins, "
+                            "which takes the added mass from the coefficients; or choose "
+                            "radiation: resonance")
+    return replace(params, hydro=coefficients, derive=Derivation(
+        critical_ratio=ratio, quadratic="quadratic" not in dd,
+        added_mass=model == "resonance" and "added_mass" not in d,
+        radiation_damping=radiation, memory=model == "cummins"))
 
 
 def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
@@ -183,7 +200,7 @@ def _damping(dd: Mapping[str, Any], dk: str
     The ratios are [heave, roll, pitch]; None adds none. Default: DEFAULT_CRITICAL_RATIO when
     ``linear`` is not given.
     """
-    only(dd, dk, ("linear", "quadratic", "critical_ratio", "decay"))
+    only(dd, dk, ("linear", "quadratic", "critical_ratio", "decay", "water_velocity"))
     linear = vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
     decay = vector(dd, "decay", dk, 6, [0.0] * 6, low=0.0)
     quadratic = vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0)
@@ -195,13 +212,15 @@ def _damping(dd: Mapping[str, Any], dk: str
     return linear, quadratic, decay, ratio
 
 
-def _hydrodynamics(raw: Any, key: str, base_dir: Path, com: np.ndarray
+def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth: float
                    ) -> tuple[HydroCoefficients | None, RadiationModel | None]:
     """``hydrodynamics``: the hull's coefficient file (``coefficients``) and ``radiation``.
 
-    A relative path is taken from the scenario's directory. The file must have been solved
-    about the boat's centre of mass. ``radiation`` (:data:`~.model.RadiationModel`, default
-    ``cummins``) only with ``coefficients``.
+    ``coefficients``: a path (relative ones from the scenario's directory), or ``auto``: the
+    file of this hull's key (:func:`~boat_dynamics.physics.model.coefficients_key`) in
+    :func:`~boat_dynamics.physics.hydro.coefficient_directories`. The file must have been
+    solved about the boat's centre of mass. ``radiation`` (:data:`~.model.RadiationModel`,
+    default ``cummins``) only with ``coefficients``.
 
     Returns:
         The coefficients and the radiation model, or (None, None).
@@ -217,12 +236,24 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, com: np.ndarray
     path = d["coefficients"]
     if not isinstance(path, str) or not path:
         raise ScenarioError(f"{key}.coefficients", path,
-                            "must be the path of a .npz coefficient file (boatsim hydro)")
-    full = Path(path) if Path(path).is_absolute() else base_dir / path
+                            "must be the path of a .npz coefficient file (boatsim hydro), "
+                            "or auto")
+    if path == "auto":
+        hull_key = coefficients_key(params, depth)
+        found = find_coefficients(hull_key, coefficient_directories(base_dir))
+        if found is None:
+            raise ScenarioError(f"{key}.coefficients", path,
+                                f"no coefficient file of this hull (key {hull_key}) in "
+                                f"{', '.join(map(str, coefficient_directories(base_dir)))}: "
+                                f"make one with `boatsim hydro SCENARIO` (needs the bem extra)")
+        full = found
+    else:
+        full = Path(path) if Path(path).is_absolute() else base_dir / path
     try:
         coefficients = load_coefficients(full)
     except HydroFileError as exc:
         raise ScenarioError(f"{key}.coefficients", path, str(exc)) from exc
+    com = params.center_of_mass
     if not np.allclose(coefficients.center_of_mass, com, rtol=0.0, atol=1e-6):
         raise ScenarioError(f"{key}.coefficients", path,
                             f"was solved about the centre of mass "

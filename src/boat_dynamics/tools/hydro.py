@@ -1,0 +1,137 @@
+"""`boatsim hydro SCENARIO`: the potential-flow coefficient files of a scenario's hulls.
+
+Each boat's file is keyed by its hull mesh, mass properties and water
+(:func:`boat_dynamics.physics.model.coefficients_key`); a hull whose file already exists where
+``coefficients: auto`` looks (:func:`boat_dynamics.physics.hydro.coefficient_directories`) is
+not solved again. New files are solved with Capytaine (:mod:`boat_dynamics.tools.bem`, the
+``bem`` extra) for the hull floating upright at rest at its own equilibrium.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from boat_dynamics.physics.hydro import coefficient_directories, find_coefficients
+from boat_dynamics.physics.model import BoatParams, coefficients_key, hull_mesh
+from boat_dynamics.physics.rigid_body import mass_matrix
+from boat_dynamics.physics.scenario import BoatSpec, Scenario
+from boat_dynamics.physics.tuning import equilibrium_height
+
+__all__ = ["HullFile", "HydroError", "coefficient_files", "describe"]
+
+
+class HydroError(ValueError):
+    """A request ``boatsim hydro`` cannot serve: what, which value, what would do."""
+
+
+@dataclass(frozen=True)
+class HullFile:
+    """One boat's coefficient file.
+
+    Attributes:
+        boat: the boat's name.
+        key: the hull's key.
+        path: the file.
+        seconds: wall time of the solve; None when the file was already there.
+    """
+
+    boat: str
+    key: str
+    path: Path
+    seconds: float | None
+
+
+def describe(params: BoatParams, z_eq: float) -> str:
+    """A file-name stem for the hull: its kind, size and draft, e.g. ``box_4x2x1_d0.500``."""
+    mesh = hull_mesh(params)
+    draft = -z_eq - float(mesh.vertices[:, 2].min())
+    size = "x".join(f"{float(e):g}" for e in np.ptp(mesh.vertices, axis=0))
+    boxy = np.all(np.isclose(np.abs(mesh.face_normals).max(axis=1), 1.0))
+    return f"{'box' if boxy else 'hull'}_{size}_d{draft:.3f}"
+
+
+def _selected(scenario: Scenario, names: Sequence[str] | None) -> list[BoatSpec]:
+    if not names:
+        return list(scenario.boats)
+    known = {b.name: b for b in scenario.boats}
+    for name in names:
+        if name not in known:
+            raise HydroError(f"--boat: {name!r} is not a boat of the scenario (its boats: "
+                             f"{', '.join(repr(n) for n in known)})")
+    return [known[n] for n in names]
+
+
+def _solver():
+    """The solving module, or HydroError saying how to install it."""
+    try:
+        import capytaine  # noqa: F401
+    except ImportError as exc:
+        raise HydroError("solving needs Capytaine, the optional extra: pip install "
+                         "'boatsim[bem]' (or make bem)") from exc
+    from boat_dynamics.tools import bem
+
+    return bem
+
+
+def coefficient_files(scenario: Scenario, scenario_dir: Path,
+                      boats: Sequence[str] | None = None, out_dir: Path | None = None,
+                      force: bool = False, panel_size: float | None = None,
+                      report=lambda line: None) -> list[HullFile]:
+    """Find or make the coefficient file of each boat (or of the boats named).
+
+    Args:
+        scenario: as read (boats not initialized).
+        scenario_dir: the scenario file's directory (``coefficients: auto`` looks in its
+            ``hydro/`` first).
+        boats: names of the boats; None or empty = every boat.
+        out_dir: where new files go; default ``scenario_dir / "hydro"``.
+        force: solve even if a file of the key exists.
+        panel_size: m, the largest panel edge (default :func:`bem_mesh.default_panel_size`).
+        report: called with a progress line before each solve.
+
+    Raises:
+        HydroError: an unknown boat, or a solve needed without Capytaine installed.
+    """
+    out_dir = Path(out_dir) if out_dir is not None else Path(scenario_dir) / "hydro"
+    if panel_size is not None and not (math.isfinite(panel_size) and panel_size > 0.0):
+        raise HydroError(f"--panel-size: {panel_size!r} is not allowed: metres, > 0")
+    files: list[HullFile] = []
+    for spec in _selected(scenario, boats):
+        params = spec.params
+        key = coefficients_key(params, scenario.sea.depth)
+        done = next((f for f in files if f.key == key), None)
+        found = None if force else find_coefficients(key, coefficient_directories(scenario_dir))
+        if done is not None or found is not None:
+            files.append(HullFile(spec.name, key, done.path if done else found, None))
+            continue
+        files.append(_solve(spec, key, scenario.sea.depth, out_dir, panel_size, report))
+    return files
+
+
+def _solve(spec: BoatSpec, key: str, depth: float, out_dir: Path, panel_size: float | None,
+           report) -> HullFile:
+    """Solve one boat's hull at its equilibrium and write its file."""
+    bem = _solver()
+    params = spec.params
+    z_eq = equilibrium_height(params)
+    stem = describe(params, z_eq)
+    report(f"boat {spec.name or '(root)'}: solving {stem} (key {key}); about a minute for a "
+           f"4 m box on one core")
+    mesh = hull_mesh(params)
+    t0 = time.perf_counter()
+    arrays = bem.solve_hull(
+        mesh.vertices, mesh.faces, draft_offset=-z_eq, mass=params.mass,
+        center_of_mass=params.center_of_mass,
+        inertia_matrix=mass_matrix(params.mass, params.inertia, params.inertia_products),
+        water_density=params.water_density, gravity=params.gravity, depth=depth,
+        panel_size=panel_size, description=stem)
+    if str(arrays["key"]) != key:
+        raise AssertionError(f"the solver keyed the file {arrays['key']}, expected {key}")
+    path = bem.write(out_dir / f"{stem}_{key}.npz", arrays)
+    return HullFile(spec.name, key, path, time.perf_counter() - t0)
