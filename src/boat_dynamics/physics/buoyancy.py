@@ -10,7 +10,18 @@ the point), it carries the weight of the water its column displaces::
 
 straight up (default) or along the surface normal, applied at the centre of the submerged
 part of the column (``min(d, max_depth) / 2`` above the point), so a box with a grid of points
-has its true centre of buoyancy. Linear curve: sum F_i = m g gives draft / height = m / (rho V)
+has its true centre of buoyancy. With ``curve: sphere`` each point is instead the lowest point
+of a sphere of diameter D = ``max_depth`` (Assassin's Creed IV's ships float on such spheres,
+4 or more a side: the seed notes, "buoyancy spheres"); its share of the volume is the
+sphere's, pi D^3 / 6, and its force the weight of the water in the submerged spherical cap of
+height h = x D::
+
+    s = x^2 (3 - 2 x)        (cap volume pi h^2 (3 r - h) / 3 over 4 pi r^3 / 3)
+
+applied at the cap's centroid, D (1/2 - 3 (1 - x)^2 / (6 - 4 x)) above the point (for a
+cap of height h the centroid lies 3 (2 r - h)^2 / (4 (3 r - h)) from the sphere's centre;
+Weisstein, "Spherical Cap", MathWorld). The surface is taken as level across each sphere.
+Linear curve: sum F_i = m g gives draft / height = m / (rho V)
 = density / rho, whatever the mass. Options (all from the notes, each labelled as such):
 ``depth_scale`` multiplies by clamp(d, 0, 1 m) (less jitter at the waterline), ``point_damping``
 adds -c (m / N) v_i at each submerged point (damping proportional to mass keeps the damping
@@ -39,10 +50,12 @@ __all__ = [
     "sample_point_buoyancy",
     "sample_point_group",
     "sample_point_wrenches",
+    "sphere_cap",
 ]
 
-#: How a column's force grows with its submersion: Archimedes, or the saturating arcade curve.
-Curve = Literal["linear", "exponential"]
+#: How a point's force grows with its submersion: Archimedes for a vertical column, the
+#: saturating arcade curve, or Archimedes for a sphere (Assassin's Creed's buoyancy spheres).
+Curve = Literal["linear", "exponential", "sphere"]
 CURVES: tuple[Curve, ...] = get_args(Curve)
 #: Where a point's force points: world up (Archimedes), or along the local surface normal.
 PointDirection = Literal["up", "normal"]
@@ -56,8 +69,9 @@ class SamplePointBuoyancy:
     Attributes:
         points: (N, 3) m, column bottoms in the body frame (relative to the hull reference point).
         volume: V, m^3, volume displaced when every column is fully submerged (mass / density).
-        max_depth: m, submersion at which a column is full (the hull height for a box).
-        curve: ``linear`` (Archimedes) or ``exponential`` (saturating, arcade).
+        max_depth: m, submersion at which a column is full (the hull height for a box); the
+            spheres' diameter for ``curve: sphere``.
+        curve: ``linear`` (Archimedes), ``exponential`` (saturating, arcade) or ``sphere``.
         alpha: steepness of the exponential curve, > 0.
         direction: ``up`` (Archimedes) or ``normal`` (along the local surface normal).
         depth_scale: multiply each force by clamp(depth, 0, 1 m).
@@ -74,6 +88,20 @@ class SamplePointBuoyancy:
     depth_scale: bool = False
     point_damping: Real = 0.0
     force_clamp: Real | None = None
+
+
+def sphere_cap(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Volume fraction and centroid height of a sphere submerged to x of its diameter.
+
+    Args:
+        x: (N,) submersion over diameter, in [0, 1].
+
+    Returns:
+        (N,) the cap's volume over the sphere's, x^2 (3 - 2 x), and (N,) the height of its
+        centroid above the sphere's lowest point, in diameters, 1/2 - 3 (1 - x)^2 / (6 - 4 x).
+    """
+    x = np.clip(x, 0.0, 1.0)
+    return x * x * (3.0 - 2.0 * x), 0.5 - 3.0 * (1.0 - x) ** 2 / (6.0 - 4.0 * x)
 
 
 def sample_point_buoyancy(
@@ -146,9 +174,13 @@ def sample_point_wrenches(
     share = (rho_g * model.volume / points_per_boat)[owner]
     max_depth = per_element(model.max_depth, owner)
     submerged = np.clip(depths, 0.0, max_depth)
+    rise = submerged / 2.0  # the centre of the submerged part, above the point
     if model.curve == "exponential":
         alpha = per_element(model.alpha, owner)
         fraction = (1.0 - np.exp(-alpha * submerged / max_depth)) / (1.0 - np.exp(-alpha))
+    elif model.curve == "sphere":
+        fraction, rise = sphere_cap(submerged / max_depth)
+        rise = rise * max_depth
     else:
         fraction = submerged / max_depth
     magnitude = share * fraction
@@ -165,7 +197,7 @@ def sample_point_wrenches(
         c = per_element(np.asarray(model.point_damping) * mass / points_per_boat, owner)
         forces_world = forces_world - ((depths > 0.0) * c)[:, None] * point_velocities
     arms = model.points - center_of_mass[owner]
-    arms[:, 2] += submerged / 2.0
+    arms[:, 2] += rise
     forces_body = np.einsum("pji,pj->pi", rotation[owner], forces_world)
     sums = sum_by_owner(np.concatenate([forces_body, cross(arms, forces_body)], axis=1),
                         owner, count)

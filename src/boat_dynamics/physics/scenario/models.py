@@ -162,11 +162,15 @@ def _sample_points(bd: Mapping[str, Any], bk: str, hull: BoxHull,
     clamp = bd.get("force_clamp")
     if clamp is not None:
         clamp = number(bd, "force_clamp", bk, 1.0, 0.0, 100.0, low_open=True)
+    curve = choice(bd, "curve", bk, "linear", CURVES)
+    depth = hull.height
+    if curve == "sphere":  # default: spheres that together have the hull's volume
+        depth = (6.0 * volume / (math.pi * points.shape[0])) ** (1.0 / 3.0)
+    max_depth = number(bd, "max_depth", bk, depth, 0.0, 1000.0, low_open=True, unit="m")
+    if curve == "sphere":
+        volume = points.shape[0] * math.pi * max_depth**3 / 6.0
     return SamplePointBuoyancy(
-        points=points, volume=volume,
-        max_depth=number(bd, "max_depth", bk, hull.height, 0.0, 1000.0, low_open=True,
-                          unit="m"),
-        curve=choice(bd, "curve", bk, "linear", CURVES),
+        points=points, volume=volume, max_depth=max_depth, curve=curve,
         alpha=number(bd, "alpha", bk, 3.0, 0.0, 100.0, low_open=True),
         direction=choice(bd, "direction", bk, "up", POINT_DIRECTIONS),
         depth_scale=flag(bd, "depth_scale", bk, False),
