@@ -89,6 +89,8 @@ def bench_boat_step() -> None:
         ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}, (10,)),
         ("mesh box, 12 tri, coefficients, resonance", _coefficients("resonance"), (10, 100)),
         ("mesh box, 12 tri, coefficients, Cummins", _coefficients("cummins"), (10, 100)),
+        ("mesh box, 12 tri, water velocity over the hull",
+         {"damping": {"water_velocity": "hull"}}, (10, 100)),
         # panelled by pipeline.init for this sea's shortest wave (so initialized in it)
         ("mesh box, Froude-Krylov", {"buoyancy": {"pressure": "froude_krylov"}}, (10,)),
     )

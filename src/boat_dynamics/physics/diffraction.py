@@ -20,21 +20,32 @@ __all__ = ["diffraction_wrench"]
 
 
 def diffraction_wrench(hydro: HydroCoefficients, sea: WaveField, reference_xy: np.ndarray,
-                       heading: float, t: float) -> tuple[np.ndarray, np.ndarray]:
-    """(3,) N force and (3,) N m torque about the centre of mass, body frame.
+                       heading: float | np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray]:
+    """Force and torque about the centre of mass, body frame, of one boat or of several.
 
     Args:
-        hydro: the hull's coefficients.
-        sea: the components acting on the boat (its wave filter applied).
-        reference_xy: (2,) m, world position of the hull reference point.
-        heading: psi, rad, the boat's yaw.
+        hydro: the hull's coefficients (shared by the boats).
+        sea: the components acting on the boats (their wave filter applied).
+        reference_xy: (2,) m, world position of the hull reference point, or (G, 2) of G boats.
+        heading: psi, rad, the boat's yaw, or (G,).
         t: s.
+
+    Returns:
+        (3,) N and (3,) N m for one boat; (G, 3) and (G, 3) for G.
     """
+    xy = np.asarray(reference_xy, dtype=float)
+    many = xy.ndim == 2
+    xy, psi = np.atleast_2d(xy), np.atleast_1d(np.asarray(heading, dtype=float))
     if not sea.components:
-        return np.zeros(3), np.zeros(3)
+        zero = np.zeros((xy.shape[0], 3))
+        return (zero, zero.copy()) if many else (zero[0], zero[0].copy())
     ar = sea.arrays
-    relative = np.arctan2(ar.dy, ar.dx) - heading
-    transfer = hydro.diffraction_at(ar.omega, relative)  # (M, 6)
-    theta = component_phases(sea, np.asarray(reference_xy, dtype=float)[None, :], t)[0]
-    wrench = (ar.a[:, None] * transfer * np.exp(1j * theta)[:, None]).sum(axis=0).real
-    return wrench[:3], wrench[3:]
+    relative = np.arctan2(ar.dy, ar.dx)[None, :] - psi[:, None]  # (G, M)
+    m = ar.omega.shape[0]
+    transfer = hydro.diffraction_at(np.tile(ar.omega, xy.shape[0]), relative.ravel()
+                                    ).reshape(xy.shape[0], m, 6)
+    theta = component_phases(sea, xy, t)  # (G, M)
+    wrench = np.einsum("m,gmk,gm->gk", ar.a, transfer, np.exp(1j * theta)).real
+    if many:
+        return wrench[:, :3], wrench[:, 3:]
+    return wrench[0, :3], wrench[0, 3:]

@@ -82,15 +82,23 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
 
 
 def _diffraction(system: System, state: FleetState, contact: Contact) -> Wrench:
-    """(B, 3) diffraction force and torque (body frames) of the boats that have coefficients."""
+    """(B, 3) diffraction force and torque (body frames) of the boats that have coefficients.
+
+    Boats sharing a coefficient set and a wave filter are evaluated in one call.
+    """
     force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
+    batches: dict[tuple[int, float], list[int]] = {}
     for i in system.diffracting:
-        params = system.params[i]
-        rot = contact.rotation[i]
-        ref = state.position[i] - rot @ params.center_of_mass
-        force[i], torque[i] = diffraction_wrench(
-            params.hydro, contact.sea.filtered(params.min_wavelength), ref[:2],
-            float(np.arctan2(rot[1, 0], rot[0, 0])), state.t)
+        p = system.params[i]
+        batches.setdefault((id(p.hydro), p.min_wavelength), []).append(i)
+    for members in batches.values():
+        idx = np.array(members, dtype=np.intp)
+        first = system.params[members[0]]
+        rot = contact.rotation[idx]
+        ref = state.position[idx] - np.einsum("bij,bj->bi", rot, system.center_of_mass[idx])
+        force[idx], torque[idx] = diffraction_wrench(
+            first.hydro, contact.sea.filtered(first.min_wavelength), ref[:, :2],
+            np.arctan2(rot[:, 1, 0], rot[:, 0, 0]), state.t)
     return Wrench(force, torque)
 
 

@@ -90,3 +90,19 @@ def test_a_boat_without_coefficients_feels_no_diffraction():
     sea = WaveField((WaveComponent(0.3, 10.0, 0.0, 0.5, 0.0),))
     f = evaluate_forces(sc.boats[0].params, sc.boats[0].initial, BoatInputs(), sea)
     assert not f.diffraction.force.any() and not f.diffraction.torque.any()
+
+
+def test_boats_sharing_coefficients_are_evaluated_together_as_alone():
+    # The pipeline evaluates boats with one coefficient set in one call: each boat's wrench
+    # equals its own evaluation (positions, headings differ; two components, two directions).
+    ref = load_coefficients(BOX)
+    sea = WaveField((WaveComponent(0.4, 15.0, 0.3, 0.0, 0.2),
+                     WaveComponent(0.2, 6.0, 2.0, 0.0, 1.0)))
+    xy = np.array([[0.0, 0.0], [5.0, -3.0], [-12.0, 7.5]])
+    psi = np.array([0.0, 1.2, -2.9])
+    force, torque = diffraction_wrench(ref, sea, xy, psi, 4.2)
+    for g in range(3):
+        f, m = diffraction_wrench(ref, sea, xy[g], float(psi[g]), 4.2)
+        np.testing.assert_allclose(force[g], f, rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(torque[g], m, rtol=1e-12, atol=1e-9)
+    assert np.abs(force).max() > 100.0  # N: a real force

@@ -90,7 +90,8 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
         raise ScenarioError("boats", boats_raw, "must be a non-empty list of boats")
     lone = len(boats_raw) == 1
     base = Path.cwd() if base_dir is None else base_dir
-    boats = tuple(boat_block(b, f"boats[{i}]", sim, lone, base, sea.depth)
+    loaded: dict = {}  # coefficient files, shared by the boats that name the same one
+    boats = tuple(boat_block(b, f"boats[{i}]", sim, lone, base, sea.depth, loaded)
                   for i, b in enumerate(boats_raw))
     names = [b.name for b in boats]
     for i, n in enumerate(names):

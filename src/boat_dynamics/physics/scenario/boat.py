@@ -51,10 +51,14 @@ _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "b
 
 
 def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
-               base_dir: Path, depth: float = math.inf) -> BoatSpec:
+               base_dir: Path, depth: float = math.inf,
+               loaded: dict[Path, HydroCoefficients] | None = None) -> BoatSpec:
     """One boat of ``boats``: each block read and checked in turn, in the order of the keys.
 
     ``depth`` (m) is the sea's: a coefficient file is keyed by it (``coefficients: auto``).
+    ``loaded``: the coefficient files the scenario's other boats read, by resolved path;
+    a boat naming one of them shares its coefficients (one file read, and the boats'
+    diffraction evaluated together).
     """
     d = mapping(raw, key)
     only(d, key, _BOAT_KEYS)
@@ -85,17 +89,18 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         control=control_block(d, key),
         water_velocity=choice(dd, "water_velocity", dk, "reference_point", WATER_VELOCITIES),
     )
-    params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth)
+    params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
+                                 {} if loaded is None else loaded)
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
 
 
 def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
                         dd: Mapping[str, Any], ratio: np.ndarray | None, base_dir: Path,
-                        depth: float) -> BoatParams:
+                        depth: float, loaded: dict[Path, HydroCoefficients]) -> BoatParams:
     """``params`` with its coefficient file (if any) and what ``pipeline.init`` derives."""
     coefficients, model = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics",
-                                         base_dir, params, depth)
+                                         base_dir, params, depth, loaded)
     if coefficients is not None and "critical_ratio" not in dd:
         ratio = None  # the radiation damping replaces the default critical ratio
     radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
@@ -212,7 +217,8 @@ def _damping(dd: Mapping[str, Any], dk: str
     return linear, quadratic, decay, ratio
 
 
-def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth: float
+def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth: float,
+                   loaded: dict[Path, HydroCoefficients]
                    ) -> tuple[HydroCoefficients | None, RadiationModel | None]:
     """``hydrodynamics``: the hull's coefficient file (``coefficients``) and ``radiation``.
 
@@ -249,10 +255,13 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
         full = found
     else:
         full = Path(path) if Path(path).is_absolute() else base_dir / path
-    try:
-        coefficients = load_coefficients(full)
-    except HydroFileError as exc:
-        raise ScenarioError(f"{key}.coefficients", path, str(exc)) from exc
+    full = full.resolve()
+    if full not in loaded:
+        try:
+            loaded[full] = load_coefficients(full)
+        except HydroFileError as exc:
+            raise ScenarioError(f"{key}.coefficients", path, str(exc)) from exc
+    coefficients = loaded[full]
     com = params.center_of_mass
     if not np.allclose(coefficients.center_of_mass, com, rtol=0.0, atol=1e-6):
         raise ScenarioError(f"{key}.coefficients", path,
