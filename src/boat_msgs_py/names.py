@@ -36,7 +36,8 @@ ODOM = "odom"
 POSE = "pose"
 TWIST = "twist"
 #: wrench/<source> topics published by the dynamics node (``total`` includes gravity).
-WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "diffraction", "total")
+WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "diffraction", "slamming",
+                  "total")
 
 WAVE_FIELD = "/ocean/wave_field"
 SAMPLE_SURFACE = "/ocean/sample_surface"

@@ -14,6 +14,7 @@ import numpy as np
 
 from boat_dynamics.physics.mesh_buoyancy import SubmergedTriangles, clip_hulls
 from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.slamming import wetted_added_mass
 from boat_dynamics.physics.system import FleetState, Group, System
 from boat_dynamics.physics.wrench import sum_by_owner
 from ocean_sim.physics.waves import (
@@ -43,6 +44,9 @@ class GroupContact:
         water_velocity: (G, 3) m/s, world frame, the mean water velocity over each boat's
             wetted hull (:func:`hull_water_velocity`), or None for a group whose damping
             takes it at the reference point.
+        waterline: (G,) kg wetted added mass of strip theory and (G, 3) m world centroid of
+            the waterline (:func:`boat_dynamics.physics.slamming.wetted_added_mass`), for a
+            mesh group with slamming; else None.
     """
 
     group: Group
@@ -54,6 +58,7 @@ class GroupContact:
     wet: SubmergedTriangles | None
     wet_owner: np.ndarray | None
     water_velocity: np.ndarray | None = None
+    waterline: tuple[np.ndarray, np.ndarray] | None = None
 
 
 @dataclass(frozen=True)
@@ -123,8 +128,13 @@ def contact(system: System, state: FleetState, sea: WaveField) -> Contact:
         if g.water_velocity == "hull":
             water = hull_water_velocity(sea.filtered(g.min_wavelength), state.t, g, world,
                                         surface, at_ref, wet, wet_owner)
+        waterline = None
+        if g.mesh is not None and g.mesh.slamming.model != "none":
+            waterline = wetted_added_mass(g.mesh.slamming, g.faces, world, depths, g.face_owner,
+                                          rot[g.index], ref[g.index], g.length,
+                                          system.water_density[g.index])
         out.append(GroupContact(g, rot[g.index], world, depths, surface, at_ref, wet,
-                                wet_owner, water))
+                                wet_owner, water, waterline))
     return Contact(state.position, state.orientation, state.t, sea, rot, tuple(out))
 
 

@@ -21,6 +21,7 @@ from boat_dynamics.physics.mooring import mooring_wrench
 from boat_dynamics.physics.propulsion import thrust
 from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
+from boat_dynamics.physics.slamming import slamming_wrench
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import Wrench
 
@@ -71,13 +72,17 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     if system.diffracting:  # potential-flow coefficients: rare, per boat
         scattered = _diffraction(system, state, contact)
         total = total + scattered
+    slam = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
+    if state.slamming is not None and any(c.waterline is not None for c in contact.groups):
+        slam = _slamming(system, state, contact)
+        total = total + slam
     tether = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
     if system.mooring is not None:  # held on station: RAO runs
         m = system.mooring
         tether = mooring_wrench(m.stiffness, m.damping, m.anchor, state.position, rot,
                                 state.velocity, state.angular_velocity)
         total = total + tether
-    return (FleetForces(buoy, damp, drag, push, steer, scattered, tether, weight, total),
+    return (FleetForces(buoy, damp, drag, push, steer, scattered, slam, tether, weight, total),
             normals_ref)
 
 
@@ -99,6 +104,23 @@ def _diffraction(system: System, state: FleetState, contact: Contact) -> Wrench:
         force[idx], torque[idx] = diffraction_wrench(
             first.hydro, contact.sea.filtered(first.min_wavelength), ref[:, :2],
             np.arctan2(rot[:, 1, 0], rot[:, 0, 0]), state.t)
+    return Wrench(force, torque)
+
+
+def _slamming(system: System, state: FleetState, contact: Contact) -> Wrench:
+    """(B, 3) slamming force and torque (body frames) of the hulls with a slamming model."""
+    force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
+    elapsed = state.t - state.slamming[:, 1]
+    for c in contact.groups:
+        i = c.group.index
+        if c.waterline is None:
+            continue
+        added, centroid = c.waterline
+        w = (np.einsum("gij,gj->gi", c.rotation, state.velocity[i])[:, 2]
+             - c.at_reference.velocities[:, 2])
+        wrench = slamming_wrench(added, state.slamming[i, 0], elapsed[i], w, centroid,
+                                 state.position[i], c.rotation)
+        force[i], torque[i] = wrench.force, wrench.torque
     return Wrench(force, torque)
 
 

@@ -27,6 +27,7 @@ import numpy as np
 
 from boat_dynamics.physics.hull import HullMesh, refine
 from boat_dynamics.physics.hull_drag import HullDrag
+from boat_dynamics.physics.slamming import Slamming
 from boat_dynamics.physics.wrench import Wrench, cross, sum_by_owner
 
 __all__ = [
@@ -68,6 +69,7 @@ class MeshBuoyancy:
             boat over this (the pressure is interpolated linearly over each triangle) ...
         max_triangles: ... unless that would take the hull past this many triangles (the cost
             bound: the surface is queried at every vertex every step).
+        slamming: the slamming model (:mod:`boat_dynamics.physics.slamming`).
     """
 
     mesh: HullMesh
@@ -75,6 +77,7 @@ class MeshBuoyancy:
     pressure: PressureModel = "hydrostatic"
     panels_per_wavelength: float = 10.0
     max_triangles: int = 4096
+    slamming: Slamming = field(default_factory=Slamming)
 
 
 #: The submerged parts of a triangle by its wet corners, coded w0 + 2 w1 + 4 w2: up to two

@@ -174,6 +174,8 @@ class BoatState:
         control_weight: 0..1, how far the control mode has taken over since it was selected.
         memory: (N,) complex, the state of the boat's radiation memory
             (:mod:`boat_dynamics.physics.radiation`), or None: calm (all zero).
+        slamming: (2,) the hull's wetted added mass (kg) at the previous step and that step's
+            time (s) (:mod:`boat_dynamics.physics.slamming`), or None: no previous step.
     """
 
     t: float
@@ -184,6 +186,7 @@ class BoatState:
     throttle: float = 0.0
     control_weight: float = 1.0
     memory: np.ndarray | None = None
+    slamming: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -204,8 +207,8 @@ class Forces:
     """Every wrench acting on the boat, body frame, about the centre of mass.
 
     ``total`` is the net wrench (the sources plus gravity) that the integrator uses;
-    ``diffraction`` is zero for a boat without potential-flow coefficients, ``mooring`` for a
-    boat not moored.
+    ``diffraction`` is zero for a boat without potential-flow coefficients, ``slamming`` for a
+    hull without a slamming model or not slamming, ``mooring`` for a boat not moored.
     """
 
     buoyancy: Wrench
@@ -214,6 +217,7 @@ class Forces:
     thrust: Wrench
     rudder: Wrench
     diffraction: Wrench
+    slamming: Wrench
     mooring: Wrench
     gravity: Wrench
     total: Wrench

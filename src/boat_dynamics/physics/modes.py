@@ -7,6 +7,8 @@ The modes themselves (one boat's pose correction, the PD attitude controller) ar
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from boat_dynamics.physics.control import (
@@ -94,7 +96,8 @@ def apply_modes(system: System, before: FleetState, after: FleetState, sea: Wave
         p[i] = pose.ref + rot @ params.center_of_mass
         q[i], v[i], w[i] = pose.orientation, rot.T @ pose.velocity, pose.angular_velocity
         weights[i] = weight
-    return FleetState(after.t, p, q, v, w, after.throttle, weights, after.memory)
+    return replace(after, position=p, orientation=q, velocity=v, angular_velocity=w,
+                   control_weight=weights)
 
 
 def _pose(params: BoatParams, state: FleetState, i: int) -> Pose:

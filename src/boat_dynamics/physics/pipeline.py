@@ -220,7 +220,19 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
         after = apply_modes(system, state, after, sea, dt)
     if system.memory is not None:
         after = replace(after, memory=_memory_after(system, state, after, dt))
+    if any(c.waterline is not None for c in contact.groups):
+        after = replace(after, slamming=_waterline_now(system, state, contact))
     return Step(after, acting, contact)
+
+
+def _waterline_now(system: System, state: FleetState, contact: Contact) -> np.ndarray:
+    """(B, 2) the wetted added mass of each slamming hull at ``state`` and its time."""
+    out = np.zeros((system.count, 2))
+    out[:, 1] = state.t
+    for c in contact.groups:
+        if c.waterline is not None:
+            out[c.group.index, 0] = c.waterline[0]
+    return out
 
 
 def _integrate_coupled(system: System, state: FleetState, force: np.ndarray,

@@ -48,6 +48,8 @@ class FleetState:
         control_weight: (B,) 0..1, how far each control mode has taken over.
         memory: (B, N) complex, the boats' radiation memory states
             (:mod:`boat_dynamics.physics.radiation`), or None: all calm (zero).
+        slamming: (B, 2) the wetted added mass (kg) of each hull at the previous step and that
+            step's time (s) (:mod:`boat_dynamics.physics.slamming`), or None: no previous step.
     """
 
     t: float
@@ -58,6 +60,7 @@ class FleetState:
     throttle: np.ndarray
     control_weight: np.ndarray
     memory: np.ndarray | None = None
+    slamming: np.ndarray | None = None
 
     @classmethod
     def stack(cls, states: Sequence[BoatState]) -> FleetState:
@@ -71,14 +74,18 @@ class FleetState:
                    np.array([s.angular_velocity for s in states], dtype=float),
                    np.array([s.throttle for s in states], dtype=float),
                    np.array([s.control_weight for s in states], dtype=float),
-                   _stack_memory([s.memory for s in states]))
+                   _stack_memory([s.memory for s in states]),
+                   None if all(s.slamming is None for s in states) else np.array(
+                       [(0.0, states[0].t) if s.slamming is None else s.slamming
+                        for s in states], dtype=float))
 
     def boat(self, i: int) -> BoatState:
         """Boat ``i``'s state (arrays are copies: the fleet state stays frozen)."""
         return BoatState(self.t, self.position[i].copy(), self.orientation[i].copy(),
                          self.velocity[i].copy(), self.angular_velocity[i].copy(),
                          float(self.throttle[i]), float(self.control_weight[i]),
-                         None if self.memory is None else self.memory[i].copy())
+                         None if self.memory is None else self.memory[i].copy(),
+                         None if self.slamming is None else self.slamming[i].copy())
 
 
 def _stack_memory(memories: Sequence[np.ndarray | None]) -> np.ndarray | None:

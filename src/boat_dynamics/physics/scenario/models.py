@@ -17,6 +17,7 @@ from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.rudder import RUDDER_MODELS, Rudder
 from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
 from boat_dynamics.physics.scenario.specs import ScenarioError
+from boat_dynamics.physics.slamming import SLAMMING_MODELS, Slamming
 
 
 def buoyancy_block(bd: Mapping[str, Any], bk: str, hull: BoxHull, mesh: HullMesh
@@ -38,7 +39,7 @@ def buoyancy_block(bd: Mapping[str, Any], bk: str, hull: BoxHull, mesh: HullMesh
 
 
 #: The mesh model's keys besides ``drag``.
-_MESH_ONLY = ("pressure", "panels_per_wavelength", "max_triangles")
+_MESH_ONLY = ("pressure", "panels_per_wavelength", "max_triangles", "slamming")
 
 
 def _mesh_buoyancy(bd: Mapping[str, Any], bk: str, mesh: HullMesh) -> MeshBuoyancy:
@@ -55,7 +56,8 @@ def _mesh_buoyancy(bd: Mapping[str, Any], bk: str, mesh: HullMesh) -> MeshBuoyan
     return MeshBuoyancy(
         mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"), pressure=pressure,
         panels_per_wavelength=number(bd, "panels_per_wavelength", bk, 10.0, 1.0, 100.0),
-        max_triangles=max_triangles)
+        max_triangles=max_triangles,
+        slamming=Slamming(choice(bd, "slamming", bk, "none", SLAMMING_MODELS)))
 
 
 def propulsion_block(pd: Mapping[str, Any], pk: str, hull: BoxHull) -> Propulsion:
