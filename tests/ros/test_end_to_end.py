@@ -278,7 +278,12 @@ def test_thrust_stops_after_cmd_timeout_set_at_run_time(boatsim, probe, tmp_path
 
 
 def test_several_boats_each_in_its_namespace(boatsim, probe):
-    sim = boatsim("run", "scenarios/multi_boat.yaml", "--fast")
+    # Real time, not --fast: the probe publishes a command every 50 ms of wall time, which is
+    # well inside cmd_timeout (1 s of simulation) only while simulation time runs no faster
+    # than wall time. Under --fast on a loaded machine (2 busy cores plus a test suite) the
+    # simulation ran 20 times faster than the probe was scheduled and alpha's thrust timed out
+    # between commands (it moved 0.37 m in 8 s).
+    sim = boatsim("run", "scenarios/multi_boat.yaml")
     odoms = {name: [] for name in ("alpha", "bravo", "charlie")}
     for name, box in odoms.items():
         probe.node.create_subscription(Odometry, f"/{name}/odom", box.append, 10)
@@ -286,9 +291,9 @@ def test_several_boats_each_in_its_namespace(boatsim, probe):
     probe.spin_until(lambda: all(len(b) > 5 for b in odoms.values()), 30.0, "three /odom")
     assert [odoms[n][-1].child_frame_id for n in odoms] == [
         "alpha/base_link", "bravo/base_link", "charlie/base_link"]
-    # Windows in simulation time (stamps), not wall time: --fast runs at whatever speed the
-    # machine gives, and charlie ends its zig-zag in a circle, where the straight-line distance
-    # between two instants depends on which instants. Path length does not.
+    # Windows in simulation time (stamps), not wall time: the simulation runs at whatever speed
+    # the machine gives, and charlie ends its zig-zag in a circle, where the straight-line
+    # distance between two instants depends on which instants. Path length does not.
     first = {n: len(b) - 1 for n, b in odoms.items()}
     t0 = time_to_seconds(odoms["alpha"][-1].header.stamp)
 
