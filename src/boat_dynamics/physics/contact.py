@@ -129,7 +129,7 @@ def contact(system: System, state: FleetState, sea: WaveField) -> Contact:
             water = hull_water_velocity(sea.filtered(g.min_wavelength), state.t, g, world,
                                         surface, at_ref, wet, wet_owner)
         waterline = None
-        if g.mesh is not None and g.mesh.slamming.model != "none":
+        if g.mesh is not None and g.mesh.slamming.model in ("geometric", "wagner"):
             waterline = wetted_added_mass(g.mesh.slamming, g.faces, world, depths, g.face_owner,
                                           rot[g.index], ref[g.index], g.length,
                                           system.water_density[g.index])

@@ -21,11 +21,11 @@ from boat_dynamics.physics.mooring import mooring_wrench
 from boat_dynamics.physics.propulsion import thrust
 from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
-from boat_dynamics.physics.slamming import slamming_wrench
+from boat_dynamics.physics.slamming import kerner_wrench, slamming_wrench, swept_volumes
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import Wrench
 
-__all__ = ["forces"]
+__all__ = ["forces", "group_swept", "previous_swept"]
 
 
 def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact
@@ -73,7 +73,7 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         scattered = _diffraction(system, state, contact)
         total = total + scattered
     slam = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
-    if state.slamming is not None and any(c.waterline is not None for c in contact.groups):
+    if state.slamming is not None and any(_slams(c) for c in contact.groups):
         slam = _slamming(system, state, contact)
         total = total + slam
     tether = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
@@ -107,21 +107,51 @@ def _diffraction(system: System, state: FleetState, contact: Contact) -> Wrench:
     return Wrench(force, torque)
 
 
+def _slams(c: GroupContact) -> bool:
+    """Whether the group's hulls have a slamming model."""
+    return c.group.mesh is not None and c.group.mesh.slamming.model != "none"
+
+
 def _slamming(system: System, state: FleetState, contact: Contact) -> Wrench:
     """(B, 3) slamming force and torque (body frames) of the hulls with a slamming model."""
     force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
     elapsed = state.t - state.slamming[:, 1]
     for c in contact.groups:
-        i = c.group.index
-        if c.waterline is None:
+        if not _slams(c):
             continue
-        added, centroid = c.waterline
-        w = (np.einsum("gij,gj->gi", c.rotation, state.velocity[i])[:, 2]
-             - c.at_reference.velocities[:, 2])
-        wrench = slamming_wrench(added, state.slamming[i, 0], elapsed[i], w, centroid,
-                                 state.position[i], c.rotation)
+        i, g = c.group.index, c.group
+        com = state.position[i]
+        if c.waterline is not None:  # momentum theory
+            added, centroid = c.waterline
+            w = (np.einsum("gij,gj->gi", c.rotation, state.velocity[i])[:, 2]
+                 - c.at_reference.velocities[:, 2])
+            wrench = slamming_wrench(added, state.slamming[i, 0], elapsed[i], w, centroid,
+                                     com, c.rotation)
+        else:  # Kerner
+            swept = group_swept(system, state, c)
+            before = swept[0] if state.swept is None else previous_swept(state, c)
+            wrench = kerner_wrench(g.mesh.slamming, swept, before, g.face_owner, elapsed[i],
+                                   system.mass[i], com, c.rotation)
         force[i], torque[i] = wrench.force, wrench.torque
     return Wrench(force, torque)
+
+
+def group_swept(system: System, state: FleetState, c: GroupContact) -> tuple[np.ndarray, ...]:
+    """:func:`.slamming.swept_volumes` of one mesh group's hulls at ``state``."""
+    i, g = c.group.index, c.group
+    return swept_volumes(g.faces, c.world, g.face_owner, c.wet.faces, c.wet.areas,
+                         np.einsum("gij,gj->gi", c.rotation, state.velocity[i]),
+                         np.einsum("gij,gj->gi", c.rotation, state.angular_velocity[i]),
+                         state.position[i])
+
+
+def previous_swept(state: FleetState, c: GroupContact) -> np.ndarray:
+    """(F, 3) the group's S_i v_i at the previous step, from ``state.swept`` (zeros if short)."""
+    g = c.group
+    rows, cols = g.index[g.face_owner], g.face_local
+    if state.swept.shape[1] <= cols.max():
+        return np.zeros((cols.shape[0], 3))
+    return state.swept[rows, cols]
 
 
 def _at_reference(system: System, contact: Contact) -> tuple[np.ndarray, np.ndarray]:

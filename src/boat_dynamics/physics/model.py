@@ -176,6 +176,7 @@ class BoatState:
             (:mod:`boat_dynamics.physics.radiation`), or None: calm (all zero).
         slamming: (2,) the hull's wetted added mass (kg) at the previous step and that step's
             time (s) (:mod:`boat_dynamics.physics.slamming`), or None: no previous step.
+        swept: (F, 3) m^3/s, Kerner's S_i v_i per hull triangle at the previous step, or None.
     """
 
     t: float
@@ -187,6 +188,7 @@ class BoatState:
     control_weight: float = 1.0
     memory: np.ndarray | None = None
     slamming: np.ndarray | None = None
+    swept: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,7 @@ import numpy as np
 from boat_dynamics.physics import contact as _contact
 from boat_dynamics.physics.contact import Contact
 from boat_dynamics.physics.damping import velocity_decay
-from boat_dynamics.physics.forces import forces
+from boat_dynamics.physics.forces import forces, group_swept
 from boat_dynamics.physics.keel import reflect_off_keel
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, panelled
 from boat_dynamics.physics.model import BoatParams
@@ -220,18 +220,34 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
         after = apply_modes(system, state, after, sea, dt)
     if system.memory is not None:
         after = replace(after, memory=_memory_after(system, state, after, dt))
-    if any(c.waterline is not None for c in contact.groups):
-        after = replace(after, slamming=_waterline_now(system, state, contact))
+    slamming = [c for c in contact.groups
+                if c.group.mesh is not None and c.group.mesh.slamming.model != "none"]
+    if slamming:
+        after = replace(after, slamming=_waterline_now(system, state, slamming),
+                        swept=_swept_now(system, state, slamming))
     return Step(after, acting, contact)
 
 
-def _waterline_now(system: System, state: FleetState, contact: Contact) -> np.ndarray:
-    """(B, 2) the wetted added mass of each slamming hull at ``state`` and its time."""
+def _waterline_now(system: System, state: FleetState, groups: list) -> np.ndarray:
+    """(B, 2) the wetted added mass of each momentum-slamming hull at ``state``, its time."""
     out = np.zeros((system.count, 2))
     out[:, 1] = state.t
-    for c in contact.groups:
+    for c in groups:
         if c.waterline is not None:
             out[c.group.index, 0] = c.waterline[0]
+    return out
+
+
+def _swept_now(system: System, state: FleetState, groups: list) -> np.ndarray | None:
+    """(B, F, 3) Kerner's S_i v_i of each Kerner hull's triangles at ``state``, or None."""
+    kerner = [c for c in groups if c.waterline is None]
+    if not kerner:
+        return None
+    size = max(int(c.group.face_local.max()) + 1 for c in kerner)
+    out = np.zeros((system.count, size, 3))
+    for c in kerner:
+        g = c.group
+        out[g.index[g.face_owner], g.face_local] = group_swept(system, state, c)[0]
     return out
 
 

@@ -19,6 +19,20 @@ m_a since the previous step over its time (the previous m_a is state:
 waterline widens with the hull moving down into the water, at the centroid of the waterline.
 A hull with vertical sides heaving in calm water keeps its waterline, so feels none; a flat
 bottom re-entering the water gets m_a V in one step (the impulse of von Karman's flat plate).
+
+Kerner's model (``kerner``; Kerner, "Water interaction model for boats in video games: part 2",
+Game Developer, 2016; as the Habrador tutorial the seed notes cite implements it), per hull
+triangle i of area A_i with submerged area S_i and centre velocity v_i (over ground)::
+
+    Gamma_i = |S_i v_i - (S_i v_i)_previous step| / (A_i dt)        (m/s^2)
+    F_i = -clamp(Gamma_i / Gamma_max, 0, 1)^p cos(theta_i) F_stop,i    (cos = n_i . v_i / |v_i|)
+    F_stop,i = m v_i (2 S_i / S) / dt                                (S: the hull's area)
+
+only on triangles moving along their outward normal (cos > 0), at their centres: the force
+that would stop the triangle's share of the boat in one step, ramped by how fast its swept
+water volume changes. Dimensioned here (the tutorial's F_stop omits 1 / dt). It is a game
+model: it scales as m / dt and with V^(2 p + 1) (Gamma ~ V^2 at constant speed), so it cannot
+follow von Karman (V^3) across speeds or time steps; the tests record how far apart they are.
 """
 
 from __future__ import annotations
@@ -28,13 +42,14 @@ from typing import Literal, get_args
 
 import numpy as np
 
-from boat_dynamics.physics.wrench import Wrench, cross
+from boat_dynamics.physics.wrench import Real, Wrench, cross, per_element, sum_by_owner
 
-__all__ = ["SLAMMING_MODELS", "STATIONS", "Slamming", "SlammingModel", "slamming_wrench",
-           "wetted_added_mass"]
+__all__ = ["SLAMMING_MODELS", "STATIONS", "Slamming", "SlammingModel", "kerner_wrench",
+           "slamming_wrench", "swept_volumes", "wetted_added_mass"]
 
-#: ``none``, or momentum theory with von Karman's (``geometric``) or Wagner's wetted width.
-SlammingModel = Literal["none", "geometric", "wagner"]
+#: ``none``; momentum theory with von Karman's (``geometric``) or Wagner's wetted width; or
+#: Kerner's per-triangle model (``kerner``, the seed notes' article).
+SlammingModel = Literal["none", "geometric", "wagner", "kerner"]
 SLAMMING_MODELS: tuple[SlammingModel, ...] = get_args(SlammingModel)
 
 _PILE_UP = {"geometric": 1.0, "wagner": np.pi / 2.0}
@@ -50,9 +65,13 @@ class Slamming:
 
     Attributes:
         model: :data:`SlammingModel`.
+        power: p of Kerner's ramp (``kerner``), > 0.
+        acceleration_max: Gamma_max, m/s^2, of Kerner's ramp (``kerner``), > 0.
     """
 
     model: SlammingModel = "none"
+    power: Real = 2.0
+    acceleration_max: Real = 50.0
 
 
 def _crossings(faces: np.ndarray, world: np.ndarray, depths: np.ndarray, face_owner: np.ndarray
@@ -147,3 +166,69 @@ def slamming_wrench(added: np.ndarray, before: np.ndarray, elapsed: np.ndarray,
     torque = cross(centroid - center_of_mass, world)
     return Wrench(np.einsum("gji,gj->gi", rotation, world),
                   np.einsum("gji,gj->gi", rotation, torque))
+
+
+def swept_volumes(faces: np.ndarray, world: np.ndarray, face_owner: np.ndarray,
+                  wet_faces: np.ndarray, wet_areas: np.ndarray, velocity: np.ndarray,
+                  angular_velocity: np.ndarray, center_of_mass: np.ndarray
+                  ) -> tuple[np.ndarray, ...]:
+    """Kerner's swept-volume rates S_i v_i of a group's hull triangles, and what goes with them.
+
+    Args:
+        faces: (F, 3) int, the triangles.
+        world: (V, 3) m, their vertices, world frame.
+        face_owner: (F,) int, the boat of each triangle.
+        wet_faces: (T,) int, the triangle each wet part comes from.
+        wet_areas: (T,) m^2, the wet parts' areas.
+        velocity: (G, 3) m/s, centre-of-mass velocities, world frame.
+        angular_velocity: (G, 3) rad/s, world frame.
+        center_of_mass: (G, 3) m, world frame.
+
+    Returns:
+        (F, 3) m^3/s S_i v_i, (F, 3) m/s v_i, (F, 3) m centres, (F,) m^2 S_i, (F, 3) m^2
+        vector areas (area times outward normal), world frame.
+    """
+    corners = world[faces]  # (F, 3, 3)
+    centres = corners.mean(axis=1)
+    vector_areas = 0.5 * cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    arms = centres - center_of_mass[face_owner]
+    v = velocity[face_owner] + cross(angular_velocity[face_owner], arms)
+    wet = np.bincount(wet_faces, wet_areas, minlength=faces.shape[0])
+    return wet[:, None] * v, v, centres, wet, vector_areas
+
+
+def kerner_wrench(model: Slamming, swept: tuple[np.ndarray, ...], before: np.ndarray,
+                  face_owner: np.ndarray, elapsed: np.ndarray, mass: np.ndarray,
+                  center_of_mass: np.ndarray, rotation: np.ndarray) -> Wrench:
+    """Kerner's slamming force and torque about the centres of mass, body frames.
+
+    Args:
+        model: the options (``power``, ``acceleration_max``: scalars or (G,)).
+        swept: :func:`swept_volumes` now.
+        before: (F, 3) m^3/s, S_i v_i at the previous step (``swept[0]`` itself: none).
+        face_owner: (F,) int.
+        elapsed: (G,) s since the previous step (0: none yet, no force).
+        mass: (G,) kg.
+        center_of_mass: (G, 3) m, world frame.
+        rotation: (G, 3, 3) body-to-world rotations.
+    """
+    now, v, centres, wet, vector_areas = swept
+    count = rotation.shape[0]
+    dt = elapsed[face_owner]
+    area = np.linalg.norm(vector_areas, axis=1)
+    hull = np.bincount(face_owner, area, minlength=count)[face_owner]
+    ready = (dt > 0.0) & (area > 0.0)
+    safe_dt = np.where(ready, dt, 1.0)
+    gamma = np.linalg.norm(now - before, axis=1) / (np.where(ready, area, 1.0) * safe_dt)
+    speed = np.linalg.norm(v, axis=1)
+    cos = np.einsum("fi,fi->f", vector_areas, v) / np.where(speed * area > 0.0, speed * area,
+                                                             np.inf)
+    ramp = np.clip(gamma / per_element(model.acceleration_max, face_owner), 0.0, 1.0)
+    factor = ramp ** per_element(model.power, face_owner) * np.maximum(cos, 0.0) * ready
+    stop = (mass[face_owner] * 2.0 * wet / hull / safe_dt)[:, None] * v
+    force = -factor[:, None] * stop
+    torque = cross(centres - center_of_mass[face_owner], force)
+    sums = sum_by_owner(np.concatenate([force, torque], axis=1), face_owner, count)
+    return Wrench(np.einsum("gji,gj->gi", rotation, sums[:, :3]),
+                  np.einsum("gji,gj->gi", rotation, sums[:, 3:]))
+

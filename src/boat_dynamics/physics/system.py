@@ -50,6 +50,8 @@ class FleetState:
             (:mod:`boat_dynamics.physics.radiation`), or None: all calm (zero).
         slamming: (B, 2) the wetted added mass (kg) of each hull at the previous step and that
             step's time (s) (:mod:`boat_dynamics.physics.slamming`), or None: no previous step.
+        swept: (B, F, 3) m^3/s, Kerner's S_i v_i of each hull triangle at the previous step
+            (padded with zeros to the largest mesh), or None.
     """
 
     t: float
@@ -61,6 +63,7 @@ class FleetState:
     control_weight: np.ndarray
     memory: np.ndarray | None = None
     slamming: np.ndarray | None = None
+    swept: np.ndarray | None = None
 
     @classmethod
     def stack(cls, states: Sequence[BoatState]) -> FleetState:
@@ -77,7 +80,8 @@ class FleetState:
                    _stack_memory([s.memory for s in states]),
                    None if all(s.slamming is None for s in states) else np.array(
                        [(0.0, states[0].t) if s.slamming is None else s.slamming
-                        for s in states], dtype=float))
+                        for s in states], dtype=float),
+                   _stack_swept([s.swept for s in states]))
 
     def boat(self, i: int) -> BoatState:
         """Boat ``i``'s state (arrays are copies: the fleet state stays frozen)."""
@@ -85,7 +89,20 @@ class FleetState:
                          self.velocity[i].copy(), self.angular_velocity[i].copy(),
                          float(self.throttle[i]), float(self.control_weight[i]),
                          None if self.memory is None else self.memory[i].copy(),
-                         None if self.slamming is None else self.slamming[i].copy())
+                         None if self.slamming is None else self.slamming[i].copy(),
+                         None if self.swept is None else self.swept[i].copy())
+
+
+def _stack_swept(swept: Sequence[np.ndarray | None]) -> np.ndarray | None:
+    """(B, F, 3) Kerner's swept volumes, padded with zeros; None when no boat has them."""
+    if all(x is None for x in swept):
+        return None
+    size = max(x.shape[0] for x in swept if x is not None)
+    out = np.zeros((len(swept), size, 3))
+    for i, x in enumerate(swept):
+        if x is not None:
+            out[i, :x.shape[0]] = x
+    return out
 
 
 def _stack_memory(memories: Sequence[np.ndarray | None]) -> np.ndarray | None:
@@ -183,6 +200,7 @@ class Group:
         min_wavelength: m, the group's wave filter.
         wave_precision: the precision of the group's surface queries.
         water_velocity: where its damping takes the water's velocity.
+        face_local: (F,) int, each triangle's index in its own boat's mesh (mesh group).
     """
 
     index: np.ndarray
@@ -199,6 +217,7 @@ class Group:
     min_wavelength: float
     wave_precision: Precision
     water_velocity: WaterVelocity
+    face_local: np.ndarray | None = None
 
     @classmethod
     def build(cls, params: Sequence[BoatParams], index: np.ndarray) -> Group:
@@ -211,7 +230,9 @@ class Group:
             faces = np.concatenate([m.faces + o for m, o in zip(meshes, offsets, strict=True)])
             face_owner = np.concatenate([np.full(m.faces.shape[0], i, dtype=np.intp)
                                          for i, m in enumerate(meshes)])
-            mesh = replace(first.buoyancy, drag=_stack([p.buoyancy.drag for p in params]))
+            face_local = np.concatenate([np.arange(m.faces.shape[0]) for m in meshes])
+            mesh = replace(first.buoyancy, drag=_stack([p.buoyancy.drag for p in params]),
+                           slamming=_stack([p.buoyancy.slamming for p in params]))
             body = np.concatenate([m.vertices for m in meshes])
             points = None
         else:
@@ -219,12 +240,13 @@ class Group:
             counts = [m.points.shape[0] for m in models]
             body = np.concatenate([m.points for m in models])
             points = replace(_stack(models, skip=("points",)), points=body)
-            mesh = faces = face_owner = None
+            mesh = faces = face_owner = face_local = None
         owner = np.concatenate([np.full(n, i, dtype=np.intp) for i, n in enumerate(counts)])
         return cls(index, mesh, points, body, owner, faces, face_owner,
                    _stack([p.propulsion for p in params]), _stack([p.rudder for p in params]),
                    np.array([p.hull.length for p in params]), first.stokes_drift,
-                   first.min_wavelength, first.wave_precision, first.water_velocity)
+                   first.min_wavelength, first.wave_precision, first.water_velocity,
+                   face_local)
 
 
 @dataclass(frozen=True)

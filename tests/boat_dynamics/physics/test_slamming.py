@@ -114,3 +114,107 @@ def test_slamming_is_refused_off_the_mesh_model_or_unknown():
     with pytest.raises(ScenarioError, match=r"buoyancy\.slamming.*only for model mesh"):
         parse_scenario({"boats": [{"buoyancy": {"model": "sample_points",
                                                 "slamming": "wagner"}}]})
+
+
+def _kerner_drop(params, speed, dt, t_end):
+    """Kerner's slamming force (world z) on the wedge moving down at ``speed``."""
+    from boat_dynamics.physics.forces import group_swept
+
+    system, sea = System.build([params]), WaveField()
+    times = np.arange(0.0, t_end, dt) + dt / 3
+    out, before = [], None
+    for t in times:
+        s = initial_state(params, [0.0, 0.0, HEIGHT / 2 - speed * t], t=t)
+        state = FleetState.stack([replace(s, velocity=np.array([0.0, 0.0, -speed]))])
+        if before is not None:
+            state = replace(state, slamming=np.array([[0.0, t - dt]]), swept=before)
+        c = contact_module.contact(system, state, sea)
+        out.append(forces(system, state, FleetInputs.stack([BoatInputs()]), c)[0]
+                   .slamming.force[0, 2])
+        before = group_swept(system, state, c.groups[0])[0][None]
+    return times, np.array(out)
+
+
+def test_kerners_force_is_its_formula_on_a_saturated_ramp(tmp_path):
+    # Gamma_max tiny: the ramp is 1 on every wet face triangle, so the force is
+    # cos(theta) 2 m V S_wet / (S dt) upward: both faces have cos(theta) = cos(beta), S_wet =
+    # 2 L c / cos(beta) with c = V t / tan(beta), S the whole hull's area.
+    params = _wedge(tmp_path, "kerner")
+    params = replace(params, buoyancy=replace(params.buoyancy, slamming=replace(
+        params.buoyancy.slamming, acceleration_max=1e-9)))
+    speed, dt = 2.0, 0.002
+    times, force = _kerner_drop(params, speed, dt, 0.8 * HEIGHT / speed)
+    mesh = params.buoyancy.mesh
+    c = mesh.corners
+    area = 0.5 * np.linalg.norm(np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]), axis=1).sum()
+    wet = 2 * LENGTH * (speed * times / math.tan(BETA)) / math.cos(BETA)
+    expected = math.cos(BETA) * 2 * params.mass * speed * wet / (area * dt)
+    assert force[0] == 0.0
+    np.testing.assert_allclose(force[1:], expected[1:], rtol=1e-5)
+
+
+def test_kerner_against_von_karman_on_the_wedge(tmp_path):
+    # Kerner's game model with its defaults (p = 2, Gamma_max = 50 m/s^2) on the 200 kg wedge
+    # at dt = 0.002 s, against von Karman: measured, median over the entry, 0.0073 of it at
+    # 1 m/s and 0.48 at 4 m/s (0.0015 and 0.105 at dt = 0.01 s). It scales as m / dt and
+    # V^(2p+1), not as V^3: use the momentum models to follow theory. Recorded here so that a
+    # change to the model shows.
+    params = _wedge(tmp_path, "kerner")
+    ratios = []
+    for speed in (1.0, 4.0):
+        times, force = _kerner_drop(params, speed, 0.002, 0.8 * HEIGHT / speed)
+        mid = times[1:] - 0.001
+        karman = RHO * math.pi * speed**3 * mid * LENGTH / math.tan(BETA) ** 2
+        ratios.append(float(np.median(force[1:] / karman)))
+    assert 0.005 < ratios[0] < 0.01
+    assert 0.35 < ratios[1] < 0.6
+
+
+def test_kerner_leaves_a_heaving_box_and_a_rising_hull_alone(tmp_path):
+    # Only triangles moving along their outward normal with a changing swept volume: a box
+    # sinking at constant speed (bottom: constant S v; sides: moving along themselves) and the
+    # wedge rising out of the water feel nothing.
+    box = parse_scenario({"boats": [{"buoyancy": {"model": "mesh",
+                                                  "slamming": "kerner"}}]}).boats[0].params
+    wedge = _wedge(tmp_path, "kerner")
+    for params, speed, z0 in ((box, 1.0, 0.0), (wedge, -1.0, HEIGHT / 2 - 0.2)):
+        system, sea = System.build([params]), WaveField()
+        from boat_dynamics.physics.forces import group_swept
+
+        before = None
+        for k in range(5):
+            t = 0.01 * k
+            s = initial_state(params, [0.0, 0.0, z0 - speed * t], t=t)
+            state = FleetState.stack([replace(s, velocity=np.array([0.0, 0.0, -speed]))])
+            if before is not None:
+                state = replace(state, slamming=np.array([[0.0, t - 0.01]]), swept=before)
+            c = contact_module.contact(system, state, sea)
+            f = forces(system, state, FleetInputs.stack([BoatInputs()]), c)[0].slamming
+            assert np.abs(f.force).max() < 1e-9 and np.abs(f.torque).max() < 1e-9
+            before = group_swept(system, state, c.groups[0])[0][None]
+
+
+def test_kerners_options_are_read_and_checked():
+    sc = parse_scenario({"boats": [{"buoyancy": {"model": "mesh", "slamming": {
+        "model": "kerner", "power": 1.5, "acceleration_max": 20.0}}}]})
+    s = sc.boats[0].params.buoyancy.slamming
+    assert (s.model, s.power, s.acceleration_max) == ("kerner", 1.5, 20.0)
+    with pytest.raises(ScenarioError, match=r"slamming\.power: 2 is not allowed: only for model"):
+        parse_scenario({"boats": [{"buoyancy": {"model": "mesh", "slamming": {
+            "model": "wagner", "power": 2}}}]})
+    with pytest.raises(ScenarioError, match=r"slamming\.acceleration_max: -1"):
+        parse_scenario({"boats": [{"buoyancy": {"model": "mesh", "slamming": {
+            "model": "kerner", "acceleration_max": -1}}}]})
+
+
+def test_kerner_through_the_pipeline_carries_its_state(tmp_path):
+    params = _wedge(tmp_path, "kerner")
+    s = replace(initial_state(params, [0.0, 0.0, HEIGHT / 2 + 0.05]),
+                velocity=np.array([0.0, 0.0, -3.0]))
+    free = s
+    none = _wedge(tmp_path, "none")
+    for _ in range(40):
+        s = step(params, s, BoatInputs(), WaveField(), 0.002)
+        free = step(none, free, BoatInputs(), WaveField(), 0.002)
+    assert s.swept is not None and s.swept.shape == (8, 3)
+    assert s.velocity[2] > free.velocity[2] + 0.05  # slowed by the slamming

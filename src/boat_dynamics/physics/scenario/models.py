@@ -57,7 +57,25 @@ def _mesh_buoyancy(bd: Mapping[str, Any], bk: str, mesh: HullMesh) -> MeshBuoyan
         mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"), pressure=pressure,
         panels_per_wavelength=number(bd, "panels_per_wavelength", bk, 10.0, 1.0, 100.0),
         max_triangles=max_triangles,
-        slamming=Slamming(choice(bd, "slamming", bk, "none", SLAMMING_MODELS)))
+        slamming=_slamming(bd.get("slamming", "none"), f"{bk}.slamming"))
+
+
+def _slamming(raw: Any, key: str) -> Slamming:
+    """``slamming``: a model name, or ``{model, power, acceleration_max}`` (``kerner``)."""
+    if isinstance(raw, str):
+        raw = {"model": raw}
+        key = key.rsplit(".", 1)[0]  # a bare name is read as the key itself
+        model = choice({"slamming": raw["model"]}, "slamming", key, "none", SLAMMING_MODELS)
+        return Slamming(model)
+    d = mapping(raw, key)
+    only(d, key, ("model", "power", "acceleration_max"))
+    model = choice(d, "model", key, "none", SLAMMING_MODELS)
+    for extra in ("power", "acceleration_max"):
+        if extra in d and model != "kerner":
+            raise ScenarioError(f"{key}.{extra}", d[extra], "only for model kerner")
+    return Slamming(model, number(d, "power", key, 2.0, 0.0, 10.0, low_open=True),
+                    number(d, "acceleration_max", key, 50.0, 0.0, 1e6, low_open=True,
+                           unit="m/s^2"))
 
 
 def propulsion_block(pd: Mapping[str, Any], pk: str, hull: BoxHull) -> Propulsion:
