@@ -19,16 +19,21 @@ from __future__ import annotations
 
 import hashlib
 import zipfile
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DOFS", "SHIPPED_COEFFICIENTS", "HydroCoefficients", "HydroFileError",
-           "coefficient_directories", "find_coefficients", "hydro_key", "load_coefficients"]
+__all__ = ["DOFS", "ESTIMATE_REFERENCE", "SHIPPED_COEFFICIENTS", "HydroCoefficients",
+           "HydroFileError", "coefficient_directories", "estimate", "find_coefficients",
+           "froude_scaled", "hydro_key", "load_coefficients", "moved"]
 
 #: The coefficient files shipped with boatsim (its scenarios' hulls), named ``*_<key>.npz``.
 SHIPPED_COEFFICIENTS = Path(__file__).resolve().parents[1] / "data" / "hydro"
+
+#: The file :func:`estimate` scales: the default 4 x 2 x 1 m box, 4100 kg, CoM 0.2 m below
+#: its reference point, deep water.
+ESTIMATE_REFERENCE = SHIPPED_COEFFICIENTS / "box_4x2x1_d0.500_2b2dd4941ae3d992.npz"
 
 #: The rigid-body degrees of freedom, in the order of every 6-vector and 6 x 6 matrix.
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
@@ -53,6 +58,8 @@ class HydroCoefficients:
         hydrostatic_stiffness: (6, 6) N/m, N, N m (the solver's, for checks).
         inertia_matrix: (6, 6) the rigid-body mass matrix the solver was given.
         center_of_mass: (3,) m, body frame, the rotation centre of the dofs.
+        source: where the coefficients come from: the file's path, or the description of an
+            estimate (:func:`estimate`).
     """
 
     omega: np.ndarray
@@ -65,6 +72,7 @@ class HydroCoefficients:
     hydrostatic_stiffness: np.ndarray
     inertia_matrix: np.ndarray
     center_of_mass: np.ndarray
+    source: str = ""
 
     def added_mass_at(self, omega: float) -> np.ndarray:
         """(6, 6) A at ``omega`` (linear in omega between grid points, clamped at the ends)."""
@@ -177,7 +185,7 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
             raise HydroFileError(f"{p}: {name} has non-finite values")
     if sizes["W"] < 2 or np.any(np.diff(arrays["omega"]) <= 0.0) or arrays["omega"][0] <= 0.0:
         raise HydroFileError(f"{p}: omega must hold at least two increasing values > 0")
-    return HydroCoefficients(**{name: arrays[name] for name in _SHAPES})
+    return HydroCoefficients(**{name: arrays[name] for name in _SHAPES}, source=str(p))
 
 
 def _canonical(name: str, value, dtype: str) -> bytes:
@@ -237,3 +245,78 @@ def find_coefficients(key: str, directories: tuple[Path, ...]) -> Path | None:
             return found[0]
     return None
 
+
+_ROTATIONAL = np.array([0, 0, 0, 1, 1, 1])
+
+
+def moved(hydro: HydroCoefficients, center: np.ndarray) -> HydroCoefficients:
+    """The same coefficients with the rotations about ``center`` (m, body frame).
+
+    A rigid motion about the old centre c is one about the new centre n plus a translation:
+    with d = c - n and T = [[I, -[d]x], [0, I]], A' = T^T A T (B, A_inf, C, M alike) and
+    F' = T^T F (Newman 1977, sec. 6.11; Fossen 2011, sec. 7.5).
+    """
+    d = hydro.center_of_mass - np.asarray(center, dtype=float)
+    t = np.eye(6)
+    t[:3, 3:] = -np.array([[0.0, -d[2], d[1]], [d[2], 0.0, -d[0]], [-d[1], d[0], 0.0]])
+
+    def square(m):
+        return np.einsum("ki,...kl,lj->...ij", t, m, t)
+
+    return HydroCoefficients(
+        hydro.omega, square(hydro.added_mass), square(hydro.radiation_damping),
+        square(hydro.added_mass_inf), hydro.directions,
+        np.einsum("ki,...k->...i", t, hydro.froude_krylov),
+        np.einsum("ki,...k->...i", t, hydro.diffraction), square(hydro.hydrostatic_stiffness),
+        square(hydro.inertia_matrix), np.asarray(center, dtype=float), hydro.source)
+
+
+def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
+    """The coefficients of the same hull ``scale`` times larger, same water (Froude scaling).
+
+    Lengths x s, frequencies / sqrt(s); a coefficient's powers of s follow its dofs (e = 1 for
+    a rotation): A and M s^(3 + e_i + e_j), B s^(2.5 + e_i + e_j), C s^(2 + e_i + e_j), the
+    excitation per metre of amplitude s^(2 + e_i) (Newman 1977, sec. 2.11; ITTC 7.5-02-07-02.1).
+    """
+    e = _ROTATIONAL[:, None] + _ROTATIONAL[None, :]
+    return HydroCoefficients(
+        hydro.omega / np.sqrt(scale), hydro.added_mass * scale ** (3.0 + e),
+        hydro.radiation_damping * scale ** (2.5 + e), hydro.added_mass_inf * scale ** (3.0 + e),
+        hydro.directions, hydro.froude_krylov * scale ** (2.0 + _ROTATIONAL),
+        hydro.diffraction * scale ** (2.0 + _ROTATIONAL),
+        hydro.hydrostatic_stiffness * scale ** (2.0 + e), hydro.inertia_matrix * scale ** (3.0 + e),
+        hydro.center_of_mass * scale, hydro.source)
+
+
+def estimate(mass: float, center_of_mass: np.ndarray, water_density: float, z_eq: float,
+             key: str) -> HydroCoefficients:
+    """Coefficients for a hull without a file: the reference box's, Froude-scaled.
+
+    The box of :data:`ESTIMATE_REFERENCE` (its waterline at its reference point) scaled by the
+    cube root of the displacement ratio and by the density ratio, placed with its waterline on
+    the boat's (body z = -z_eq), its rotations moved to the boat's centre of mass. Right for a
+    box of the same proportions; for others an estimate (the tests measure it on the shipped
+    boxes), deep water. Its ``source`` says so.
+
+    Args:
+        mass: kg, the boat's (its displacement at rest).
+        center_of_mass: (3,) m, body frame.
+        water_density: kg/m^3.
+        z_eq: m, the boat's equilibrium height (its waterline is at body z = -z_eq).
+        key: the hull's key, for the description.
+    """
+    reference = load_coefficients(ESTIMATE_REFERENCE)
+    rho = 1025.0  # the reference file's water
+    scale = (mass / water_density / (float(reference.inertia_matrix[0, 0]) / rho)) ** (1 / 3)
+    scaled = froude_scaled(reference, scale)
+    ratio = water_density / rho
+    scaled = replace(
+        scaled, added_mass=scaled.added_mass * ratio,
+        radiation_damping=scaled.radiation_damping * ratio,
+        added_mass_inf=scaled.added_mass_inf * ratio, froude_krylov=scaled.froude_krylov * ratio,
+        diffraction=scaled.diffraction * ratio,
+        hydrostatic_stiffness=scaled.hydrostatic_stiffness * ratio,
+        center_of_mass=scaled.center_of_mass - np.array([0.0, 0.0, z_eq]))
+    return replace(moved(scaled, center_of_mass),
+                   source=f"estimate for hull {key}: {ESTIMATE_REFERENCE.name} Froude-scaled "
+                          f"by {scale:.3f}, no file of its own")

@@ -76,6 +76,8 @@ class Derivation:
             heave, roll and pitch (from ``hydro``).
         memory: set ``added_mass_matrix`` to ``hydro``'s A_inf and ``radiation_memory`` to
             its fitted memory (the Cummins equation).
+        estimate: the key of a hull that asked for its coefficient file (``coefficients:
+            auto``) and has none: ``hydro`` becomes :func:`.hydro.estimate` at its equilibrium.
     """
 
     critical_ratio: np.ndarray | None = None
@@ -83,6 +85,7 @@ class Derivation:
     added_mass: bool = False
     radiation_damping: bool = False
     memory: bool = False
+    estimate: str | None = None
 
 
 @dataclass(frozen=True)

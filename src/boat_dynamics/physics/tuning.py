@@ -15,7 +15,7 @@ import numpy as np
 
 from boat_dynamics.physics.contact import contact
 from boat_dynamics.physics.forces import forces
-from boat_dynamics.physics.hydro import HydroCoefficients
+from boat_dynamics.physics.hydro import HydroCoefficients, estimate
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.radiation import fit_memory
@@ -168,6 +168,9 @@ def derive(params: BoatParams) -> BoatParams:
     if wanted is None:
         return params
     z_eq = equilibrium_height(params)
+    if wanted.estimate is not None:
+        params = replace(params, hydro=estimate(params.mass, params.center_of_mass,
+                                                params.water_density, z_eq, wanted.estimate))
     linear, quadratic = params.damping_linear, params.damping_quadratic
     if params.hydro is not None and wanted.memory:
         params = replace(params, added_mass_matrix=params.hydro.added_mass_inf.copy(),

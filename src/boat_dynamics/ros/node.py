@@ -416,9 +416,13 @@ def _hydrodynamics(params: BoatParams) -> str:
     if params.hydro is None:
         return ("no potential-flow coefficients (hydrodynamics.coefficients): added mass and "
                 "damping as the scenario gives them, no diffraction")
+    source = params.hydro.source
+    if source.startswith("estimate"):
+        source = (f"ESTIMATED ({source}; `boatsim hydro SCENARIO` solves the hull's own, "
+                  f"with the bem extra)")
     if memory is not None:
-        return (f"potential-flow coefficients: Cummins radiation (A_inf 6 x 6, memory of "
-                f"{memory.poles.shape[0]} modes fitting B and A within "
+        return (f"potential-flow coefficients {source}: Cummins radiation (A_inf 6 x 6, memory "
+                f"of {memory.poles.shape[0]} modes fitting B and A within "
                 f"{100 * memory.error:.1f} %), diffraction")
-    return ("potential-flow coefficients: added mass and radiation damping at the natural "
-            "frequencies (radiation: resonance), diffraction")
+    return (f"potential-flow coefficients {source}: added mass and radiation damping at the "
+            f"natural frequencies (radiation: resonance), diffraction")

@@ -99,9 +99,10 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
                         dd: Mapping[str, Any], ratio: np.ndarray | None, base_dir: Path,
                         depth: float, loaded: dict[Path, HydroCoefficients]) -> BoatParams:
     """``params`` with its coefficient file (if any) and what ``pipeline.init`` derives."""
-    coefficients, model = _hydrodynamics(d.get("hydrodynamics"), f"{key}.hydrodynamics",
-                                         base_dir, params, depth, loaded)
-    if coefficients is not None and "critical_ratio" not in dd:
+    coefficients, model, missing = _hydrodynamics(d.get("hydrodynamics"),
+                                                  f"{key}.hydrodynamics", base_dir, params,
+                                                  depth, loaded)
+    if model is not None and "critical_ratio" not in dd:
         ratio = None  # the radiation damping replaces the default critical ratio
     radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
     if model == "cummins" and np.any(params.added_mass != 0.0):
@@ -112,7 +113,7 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
     return replace(params, hydro=coefficients, derive=Derivation(
         critical_ratio=ratio, quadratic="quadratic" not in dd,
         added_mass=model == "resonance" and "added_mass" not in d,
-        radiation_damping=radiation, memory=model == "cummins"))
+        radiation_damping=radiation, memory=model == "cummins", estimate=missing))
 
 
 def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
@@ -219,17 +220,19 @@ def _damping(dd: Mapping[str, Any], dk: str
 
 def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth: float,
                    loaded: dict[Path, HydroCoefficients]
-                   ) -> tuple[HydroCoefficients | None, RadiationModel | None]:
+                   ) -> tuple[HydroCoefficients | None, RadiationModel | None, str | None]:
     """``hydrodynamics``: the hull's coefficient file (``coefficients``) and ``radiation``.
 
     ``coefficients``: a path (relative ones from the scenario's directory), or ``auto``: the
     file of this hull's key (:func:`~boat_dynamics.physics.model.coefficients_key`) in
-    :func:`~boat_dynamics.physics.hydro.coefficient_directories`. The file must have been
-    solved about the boat's centre of mass. ``radiation`` (:data:`~.model.RadiationModel`,
-    default ``cummins``) only with ``coefficients``.
+    :func:`~boat_dynamics.physics.hydro.coefficient_directories`, or, when there is none, an
+    estimate (:func:`~boat_dynamics.physics.hydro.estimate`, made by ``pipeline.init``). The
+    file must have been solved about the boat's centre of mass. ``radiation``
+    (:data:`~.model.RadiationModel`, default ``cummins``) only with ``coefficients``.
 
     Returns:
-        The coefficients and the radiation model, or (None, None).
+        The coefficients (None: none, or to estimate), the radiation model (None: none), and
+        the hull's key when its coefficients are to be estimated.
     """
     d = mapping(raw, key)
     only(d, key, ("coefficients", "radiation"))
@@ -237,7 +240,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
         if "radiation" in d:
             raise ScenarioError(f"{key}.radiation", d["radiation"],
                                 "needs hydrodynamics.coefficients (a coefficient file)")
-        return None, None
+        return None, None, None
     model = choice(d, "radiation", key, "cummins", RADIATION_MODELS)
     path = d["coefficients"]
     if not isinstance(path, str) or not path:
@@ -248,10 +251,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
         hull_key = coefficients_key(params, depth)
         found = find_coefficients(hull_key, coefficient_directories(base_dir))
         if found is None:
-            raise ScenarioError(f"{key}.coefficients", path,
-                                f"no coefficient file of this hull (key {hull_key}) in "
-                                f"{', '.join(map(str, coefficient_directories(base_dir)))}: "
-                                f"make one with `boatsim hydro SCENARIO` (needs the bem extra)")
+            return None, model, hull_key
         full = found
     else:
         full = Path(path) if Path(path).is_absolute() else base_dir / path
@@ -268,7 +268,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
                             f"was solved about the centre of mass "
                             f"{coefficients.center_of_mass.tolist()}, the boat's is "
                             f"{com.tolist()} (m)")
-    return coefficients, model
+    return coefficients, model, None
 
 
 def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
