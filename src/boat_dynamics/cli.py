@@ -157,7 +157,13 @@ def _add_rao(verbs) -> None:
 
 def _rao(args: argparse.Namespace) -> int:
     from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
-    from boat_dynamics.tools.rao import RaoError, format_table, plot_raos, rao_points
+    from boat_dynamics.tools.rao import (
+        RaoError,
+        format_table,
+        plot_raos,
+        rao_points,
+        theory_curve,
+    )
 
     path = Path(args.scenario or default_scenario_path())
     try:
@@ -174,7 +180,8 @@ def _rao(args: argparse.Namespace) -> int:
                                              " (none: no hydrodynamics.coefficients)"))
     print(format_table(points, length))
     out = plot_raos(points, length, args.output or f"{path.stem}_rao.png",
-                    f"{path.name}: boat {boat.name or '(root)'}, RAOs of the centre of mass")
+                    f"{path.name}: boat {boat.name or '(root)'}, RAOs of the centre of mass",
+                    theory_curve(boat.params, scenario.sea.gravity, scenario.sea.depth))
     print(f"boatsim: wrote {out}")
     return 0
 

@@ -10,12 +10,13 @@ their own hull against theory.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.seakeeping import (
     Response,
@@ -23,12 +24,16 @@ from boat_dynamics.physics.seakeeping import (
     regular_wave_response,
     rigid_body_matrix,
 )
+from ocean_sim.physics.waves import angular_frequency
 
 __all__ = ["DEFAULT_DIRECTIONS_DEG", "DEFAULT_WAVELENGTHS", "RaoError", "RaoPoint",
-           "format_table", "plot_raos", "rao_points"]
+           "format_table", "plot_raos", "rao_points", "theory_curve"]
 
 #: Wavelengths, in boat lengths, of a default run.
 DEFAULT_WAVELENGTHS = (0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0)
+#: Heave stays in m/m; roll and pitch go from rad/m to deg/m.
+_DEG = np.array([1.0, 180 / math.pi, 180 / math.pi])
+
 #: Wave directions (travelling toward, relative to the bow) of a default run: head, beam seas.
 DEFAULT_DIRECTIONS_DEG = (180.0, 90.0)
 
@@ -128,11 +133,30 @@ def format_table(points: Sequence[RaoPoint], length: float) -> str:
     return "\n".join(lines)
 
 
+def theory_curve(params: BoatParams, gravity: float, depth: float
+                 ) -> Callable[[np.ndarray, float], np.ndarray] | None:
+    """Potential flow's |heave|, |roll|, |pitch| at wavelengths (m) and a direction (rad).
+
+    None for a boat without coefficients.
+    """
+    if params.hydro is None:
+        return None
+    mass = rigid_body_matrix(params)
+
+    def curve(wavelengths: np.ndarray, direction: float) -> np.ndarray:
+        omega = angular_frequency(2 * math.pi / np.asarray(wavelengths), gravity, depth)
+        return np.array([np.abs(potential_flow_rao(params.hydro, mass, float(w),
+                                                   direction)[2:5]) for w in omega])
+
+    return curve
+
+
 def plot_raos(points: Sequence[RaoPoint], length: float, out: str | Path,
-              title: str = "") -> Path:
+              title: str = "", theory=None) -> Path:
     """Heave, roll and pitch RAOs against lambda / L (PNG, headless); returns the path.
 
-    Markers: simulated; lines: potential flow (where the boat has coefficients).
+    Markers: simulated; lines: potential flow on 200 wavelengths between the first and the
+    last point (``theory``: :func:`theory_curve`), or through the points' own values.
     """
     import matplotlib
 
@@ -150,9 +174,13 @@ def plot_raos(points: Sequence[RaoPoint], length: float, out: str | Path,
         label = f"{math.degrees(direction):g} deg"
         for k, ax in enumerate(axes):
             line = ax.plot(x, sim[:, k], "o", label=f"boatsim, {label}")[0]
-            if all(p.theory is not None for p in row):
-                pf = np.array([p.theory for p in row]) * np.array([1.0, 180 / math.pi,
-                                                                   180 / math.pi])
+            if theory is not None:
+                dense = np.geomspace(x[0], x[-1], 200) if len(x) > 1 else np.array(x)
+                pf = theory(dense * length, direction) * _DEG
+                ax.plot(dense, pf[:, k], "--", color=line.get_color(),
+                        label=f"potential flow, {label}")
+            elif all(p.theory is not None for p in row):
+                pf = np.array([p.theory for p in row]) * _DEG
                 ax.plot(x, pf[:, k], "--", color=line.get_color(),
                         label=f"potential flow, {label}")
     for ax, name in zip(axes, ("heave, m/m", "roll, deg/m", "pitch, deg/m"), strict=True):

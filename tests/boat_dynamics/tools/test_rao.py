@@ -67,3 +67,21 @@ def test_a_bad_scenario_is_refused_naming_the_key(tmp_path, capsys):
     scenario.write_text("boats:\n  - {hydrodynamics: {radiation: cummins}}\n")
     assert main(["rao", str(scenario)]) == 2
     assert "hydrodynamics.radiation" in capsys.readouterr().err
+
+
+def test_the_potential_flow_curve_peaks_at_the_coupled_roll_resonance():
+    # The plot's dense potential-flow curve (200 wavelengths): in beam seas the box's roll
+    # peaks where its sway-coupled roll mode is (omega 3.067 rad/s: the complex root of
+    # det(-w^2 (M + A) - i w B + C) = 0, tests/boat_dynamics/physics/test_hydro.py).
+    from boat_dynamics.physics.scenario import parse_scenario
+    from boat_dynamics.tools.rao import theory_curve
+
+    params = parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
+                                        "hydrodynamics": {"coefficients": str(BOX)}}]}
+                            ).boats[0].params
+    curve = theory_curve(params, 9.81, math.inf)
+    wavelengths = np.geomspace(4.0, 12.0, 2001)
+    roll = curve(wavelengths, math.pi / 2)[:, 1]
+    omega = math.sqrt(2 * math.pi * 9.81 / wavelengths[np.argmax(roll)])
+    assert omega == pytest.approx(3.067, rel=0.01)
+    assert theory_curve(parse_scenario({}).boats[0].params, 9.81, math.inf) is None
