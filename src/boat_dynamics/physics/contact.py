@@ -115,6 +115,8 @@ def contact(system: System, state: FleetState, sea: WaveField) -> Contact:
     out = []
     for (g, world), (surface, at_ref) in zip(queries, _sample(sea, state.t, queries, ref),
                                              strict=True):
+        if surface is None:  # linear pressure: the hull against the calm-water plane
+            surface, at_ref = _calm(world), _calm(ref[g.index])
         depths = surface.heights - world[:, 2]
         wet = wet_owner = None
         if g.mesh is not None:
@@ -186,13 +188,17 @@ def _sample(sea: WaveField, t: float, queries: list, ref: np.ndarray) -> list:
     """The surface at every query's points and at its boats' reference points.
 
     Groups sharing a wave filter and precision share one sample_surface call (its fixed cost
-    is paid once).
+    is paid once). A ``linear`` group is not queried ((None, None)): its hulls meet the
+    calm-water plane, and the waves act on them through their coefficients.
     """
     by_filter: dict[tuple, list[int]] = {}
     for k, (g, _) in enumerate(queries):
         by_filter.setdefault((g.min_wavelength, g.wave_precision), []).append(k)
-    out: list = [None] * len(queries)
+    out: list = [(None, None)] * len(queries)
     for (min_wavelength, precision), members in by_filter.items():
+        members = [k for k in members if not _linear(queries[k][0])]
+        if not members:
+            continue
         xy = np.concatenate([a for k in members
                              for a in (queries[k][1][:, :2], ref[queries[k][0].index, :2])])
         surface = sample_surface(sea, xy, t, min_wavelength=min_wavelength,
@@ -203,3 +209,17 @@ def _sample(sea: WaveField, t: float, queries: list, ref: np.ndarray) -> list:
             out[k] = (surface.rows(start, start + n), surface.rows(start + n, start + n + m))
             start += n + m
     return out
+
+
+def _linear(group: Group) -> bool:
+    """Whether the group's hulls meet the calm-water plane (``linear`` pressure)."""
+    return group.mesh is not None and group.mesh.pressure == "linear"
+
+
+def _calm(world: np.ndarray) -> SurfaceSample:
+    """The calm-water plane z = 0 above ``world`` (E, 3) points: at rest, level."""
+    n = world.shape[0]
+    normals = np.zeros((n, 3))
+    normals[:, 2] = 1.0
+    return SurfaceSample(np.zeros(n), normals, np.zeros((n, 3)), np.zeros((n, 3)),
+                         world[:, :2].copy())

@@ -14,9 +14,9 @@ import numpy as np
 from boat_dynamics.physics.buoyancy import sample_point_group
 from boat_dynamics.physics.contact import Contact, GroupContact
 from boat_dynamics.physics.damping import damping, radiation_damping
-from boat_dynamics.physics.diffraction import diffraction_wrench
+from boat_dynamics.physics.diffraction import excitation_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
-from boat_dynamics.physics.mesh_buoyancy import pressure_wrenches
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, pressure_wrenches
 from boat_dynamics.physics.mooring import mooring_wrench
 from boat_dynamics.physics.propulsion import thrust
 from boat_dynamics.physics.radiation import memory_wrench
@@ -69,9 +69,12 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     buoy, drag = Wrench(*buoy), Wrench(*drag)
     total = buoy + damp + drag + push + steer + weight
     scattered = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
-    if system.diffracting:  # potential-flow coefficients: rare, per boat
-        scattered = _diffraction(system, state, contact)
+    if system.diffracting:  # potential-flow coefficients: per coefficient set
+        scattered, incident = _excitation(system, state, contact)
         total = total + scattered
+        if incident is not None:  # linear pressure: the incident waves' Froude-Krylov force
+            buoy = buoy + incident
+            total = total + incident
     slam = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
     if state.slamming is not None and any(_slams(c) for c in contact.groups):
         slam = _slamming(system, state, contact)
@@ -86,25 +89,36 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
             normals_ref)
 
 
-def _diffraction(system: System, state: FleetState, contact: Contact) -> Wrench:
-    """(B, 3) diffraction force and torque (body frames) of the boats that have coefficients.
+def _excitation(system: System, state: FleetState, contact: Contact
+                ) -> tuple[Wrench, Wrench | None]:
+    """The diffraction wrench, and the linear Froude-Krylov one, of the boats with coefficients.
 
-    Boats sharing a coefficient set and a wave filter are evaluated in one call.
+    (B, 3) forces and torques, body frames; the Froude-Krylov wrench only for boats with
+    ``linear`` pressure (None when there is none). Boats sharing a coefficient set, a wave
+    filter and a pressure model are evaluated in one call.
     """
     force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
-    batches: dict[tuple[int, float], list[int]] = {}
+    fk_force, fk_torque, linear = np.zeros((system.count, 3)), np.zeros((system.count, 3)), False
+    batches: dict[tuple[int, float, bool], list[int]] = {}
     for i in system.diffracting:
         p = system.params[i]
-        batches.setdefault((id(p.hydro), p.min_wavelength), []).append(i)
-    for members in batches.values():
+        flat = isinstance(p.buoyancy, MeshBuoyancy) and p.buoyancy.pressure == "linear"
+        batches.setdefault((id(p.hydro), p.min_wavelength, flat), []).append(i)
+    for (_, _, flat), members in batches.items():
         idx = np.array(members, dtype=np.intp)
         first = system.params[members[0]]
         rot = contact.rotation[idx]
         ref = state.position[idx] - np.einsum("bij,bj->bi", rot, system.center_of_mass[idx])
-        force[idx], torque[idx] = diffraction_wrench(
-            first.hydro, contact.sea.filtered(first.min_wavelength), ref[:, :2],
-            np.arctan2(rot[:, 1, 0], rot[:, 0, 0]), state.t)
-    return Wrench(force, torque)
+        args = (first.hydro, contact.sea.filtered(first.min_wavelength), ref[:, :2],
+                np.arctan2(rot[:, 1, 0], rot[:, 0, 0]), state.t)
+        if flat:
+            scattered, incident = excitation_wrench(*args, "both")
+            force[idx], torque[idx] = scattered[:, :3], scattered[:, 3:]
+            fk_force[idx], fk_torque[idx] = incident[:, :3], incident[:, 3:]
+            linear = True
+        else:
+            force[idx], torque[idx] = excitation_wrench(*args, "diffraction")
+    return Wrench(force, torque), (Wrench(fk_force, fk_torque) if linear else None)
 
 
 def _slams(c: GroupContact) -> bool:

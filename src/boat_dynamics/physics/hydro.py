@@ -96,6 +96,11 @@ class HydroCoefficients:
         """(M, 6) complex Froude-Krylov forces per metre of amplitude, as :meth:`diffraction_at`."""
         return _bilinear(self.omega, self.directions, self.froude_krylov, omega, direction)
 
+    def excitation_at(self, omega: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """(M, 12) complex: diffraction (6) then Froude-Krylov (6), one interpolation."""
+        table = np.concatenate([self.diffraction, self.froude_krylov], axis=2)
+        return _bilinear(self.omega, self.directions, table, omega, direction)
+
     def natural(self, dof: int, stiffness: float, inertia: float) -> tuple[float, float, float]:
         """(omega_n rad/s, A_ii(omega_n), damping ratio) of one dof with its added mass.
 
@@ -128,7 +133,8 @@ def _bilinear(omegas: np.ndarray, directions: np.ndarray, table: np.ndarray,
     if directions[-1] <= np.pi + 1e-9:  # a half circle: mirror the other half
         mirrored = beta > np.pi
         beta = np.where(mirrored, 2 * np.pi - beta, beta)
-        sign = np.where(mirrored[:, None], _MIRRORED, 1.0)
+        flip = np.tile(_MIRRORED, table.shape[-1] // 6)
+        sign = np.where(mirrored[:, None], flip, 1.0)
     beta = np.clip(beta, directions[0], directions[-1])
     i = np.clip(np.searchsorted(omegas, w) - 1, 0, omegas.shape[0] - 2)
     j = np.clip(np.searchsorted(directions, beta) - 1, 0, directions.shape[0] - 2)

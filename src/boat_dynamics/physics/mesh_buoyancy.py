@@ -49,10 +49,15 @@ __all__ = [
 
 
 #: The pressure on the wetted hull: ``hydrostatic``, rho g (eta - z) (the seed notes' surfacic
-#: method: the full surface elevation at every depth), or ``froude_krylov``, hydrostatic plus
+#: method: the full surface elevation at every depth); ``froude_krylov``, hydrostatic plus
 #: the incident waves' pressure with the depth decay of linear theory
-#: (:func:`ocean_sim.physics.waves.pressure_head`).
-PressureModel = Literal["hydrostatic", "froude_krylov"]
+#: (:func:`ocean_sim.physics.waves.pressure_head`), on the hull up to the instantaneous
+#: surface; or ``linear``, linear seakeeping: rho g (-z) on the hull up to the calm-water plane
+#: (exact hydrostatics of the hull's own motion) plus the Froude-Krylov force of the incident
+#: waves from the hull's potential-flow coefficients
+#: (:func:`boat_dynamics.physics.diffraction.excitation_wrench`; Newman 1977, sec. 6.17;
+#: WEC-Sim's linear hydrostatics and excitation).
+PressureModel = Literal["hydrostatic", "froude_krylov", "linear"]
 PRESSURE_MODELS: tuple[PressureModel, ...] = get_args(PressureModel)
 
 

@@ -206,12 +206,18 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     torque = acting.total.torque
     if system.special:  # control modes: rare, arcade
         torque = pd_torques(system, state, torque, normals, dt)
-    p, q, v, w = integrate(state.position, state.orientation, state.velocity,
-                           state.angular_velocity, acting.total.force, torque,
-                           system.effective_mass, system.effective_inertia, dt,
-                           system.inertia_products)
-    if system.coupled:
-        _integrate_coupled(system, state, acting.total.force, torque, dt, (p, q, v, w))
+    if len(system.coupled) == system.count:  # every boat has a 6 x 6 added mass
+        p, q, v, w = integrate_coupled(state.position, state.orientation, state.velocity,
+                                       state.angular_velocity, acting.total.force, torque,
+                                       system.mass, system.inertia_tensor,
+                                       system.mass_matrix_inverse, dt)
+    else:
+        p, q, v, w = integrate(state.position, state.orientation, state.velocity,
+                               state.angular_velocity, acting.total.force, torque,
+                               system.effective_mass, system.effective_inertia, dt,
+                               system.inertia_products)
+        if system.coupled:
+            _integrate_coupled(system, state, acting.total.force, torque, dt, (p, q, v, w))
     v = reflect_off_keel(v, system.keel_rate, dt)
     if system.decay is not None:
         v, w = velocity_decay(v, w, system.decay, dt)

@@ -219,3 +219,36 @@ def test_froude_krylov_is_hydrostatic_in_still_water(boat_factory):
     a = evaluate_forces(params, state, BoatInputs(), WaveField()).buoyancy
     b = evaluate_forces(fk, state, BoatInputs(), WaveField()).buoyancy
     assert np.array_equal(a.force, b.force) and np.array_equal(a.torque, b.torque)
+
+
+def test_linear_pressure_is_hydrostatic_against_the_calm_plane_and_needs_coefficients():
+    # In any sea, `linear` clips the hull at z = 0 (no surface query): its buoyancy is the
+    # hydrostatic model's in still water, at any pose; the incident waves act through the
+    # coefficients' Froude-Krylov force (on wrench/buoyancy too).
+    import math as _math
+    from pathlib import Path as _Path
+
+    from boat_dynamics.physics.boat import BoatInputs, evaluate_forces, initial_state
+    from boat_dynamics.physics.pipeline import init_scenario
+    from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+    from ocean_sim.physics.waves import WaveComponent, WaveField
+
+    box = str(_Path(__file__).resolve().parents[2] / "data" / "hydro" / "box_4x2x1_d0.5.npz")
+    lin = init_scenario(parse_scenario({"boats": [{
+        "center_of_mass": [0, 0, -0.2], "buoyancy": {"pressure": "linear"},
+        "hydrodynamics": {"coefficients": box}}]})).boats[0].params
+    hyd = init_scenario(parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2]}]})
+                        ).boats[0].params
+    sea = WaveField((WaveComponent(0.3, 12.0, 0.5, 0.0, 0.0),))
+    for pose in ([0.1, 0.2, -0.05], [3.0, -1.0, 0.12]):
+        s = initial_state(lin, pose, roll=0.1, pitch=-0.05, yaw=0.7)
+        calm = evaluate_forces(hyd, s, BoatInputs(), WaveField()).buoyancy
+        waves = evaluate_forces(lin, s, BoatInputs(), sea)
+        still = evaluate_forces(lin, s, BoatInputs(), WaveField()).buoyancy
+        np.testing.assert_allclose(still.force, calm.force, rtol=1e-12, atol=1e-6)
+        np.testing.assert_allclose(still.torque, calm.torque, rtol=1e-12, atol=1e-6)
+        assert np.abs(waves.buoyancy.force - still.force).max() > 100.0  # the waves' FK
+        assert np.abs(waves.diffraction.force).max() > 10.0
+    with pytest.raises(ScenarioError, match=r"buoyancy\.pressure: 'linear'.*coefficients"):
+        parse_scenario({"boats": [{"buoyancy": {"pressure": "linear"}}]})
+    assert _math.isfinite(lin.control.height_offset)

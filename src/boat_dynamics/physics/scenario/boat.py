@@ -19,6 +19,7 @@ from boat_dynamics.physics.hydro import (
     find_coefficients,
     load_coefficients,
 )
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import (
     RADIATION_MODELS,
     WATER_VELOCITIES,
@@ -105,6 +106,11 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
     if model is not None and "critical_ratio" not in dd:
         ratio = None  # the radiation damping replaces the default critical ratio
     radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
+    if (isinstance(params.buoyancy, MeshBuoyancy) and params.buoyancy.pressure == "linear"
+            and model is None):
+        raise ScenarioError(f"{key}.buoyancy.pressure", "linear",
+                            "needs hydrodynamics.coefficients (a file, or auto): the incident "
+                            "waves' force comes from the hull's potential-flow coefficients")
     if model == "cummins" and np.any(params.added_mass != 0.0):
         raise ScenarioError(f"{key}.added_mass", d.get("added_mass"),
                             "must be zero (or absent) with hydrodynamics.radiation cummins, "
