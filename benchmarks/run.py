@@ -91,6 +91,13 @@ def bench_boat_step() -> None:
         ("mesh box, 12 tri, coefficients, Cummins", _coefficients("cummins"), (10, 100)),
         ("mesh box, 12 tri, water velocity over the hull",
          {"damping": {"water_velocity": "hull"}}, (10, 100)),
+        # the default scenario's boat since issue 10 (the line above "mesh box, 12 triangles"
+        # is the old one): linear seakeeping with its shipped coefficient file
+        ("default boat: linear, file, Cummins, hull water",
+         {"center_of_mass": [0.0, 0.0, -0.2], "buoyancy": {"pressure": "linear"},
+          "hydrodynamics": {"coefficients": "auto"},
+          "damping": {"linear": [500.0, 4000.0, 0.0, 1000.0, 0.0, 3000.0],
+                      "water_velocity": "hull"}}, (10, 100)),
         # panelled by pipeline.init for this sea's shortest wave (so initialized in it)
         ("mesh box, Froude-Krylov", {"buoyancy": {"pressure": "froude_krylov"}}, (10,)),
     )

@@ -5,15 +5,15 @@ Pure core: returns plain values; the node turns them into diagnostic_msgs.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from boat_dynamics.physics.contact import Contact, GroupContact, contact
-from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, hydrostatics_of
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, clip_hulls, hydrostatics_of
 from boat_dynamics.physics.model import BoatParams, BoatState
 from boat_dynamics.physics.system import FleetState, System
-from ocean_sim.physics.waves import WaveField
+from ocean_sim.physics.waves import WaveField, sample_surface
 
 __all__ = ["BoatReport", "active_remedies", "boat_report", "fleet_reports"]
 
@@ -86,7 +86,7 @@ def fleet_reports(system: System, state: FleetState, touching: Contact, substeps
     volumes = np.zeros(system.count)
     values: list[list] = [[] for _ in range(system.count)]
     for c in touching.groups:
-        _group_values(c, state, volumes, values)
+        _group_values(_against_the_waves(c, touching.sea, state.t), state, volumes, values)
     out = []
     for k, params in enumerate(system.params):
         line = (remedies[k] if remedies is not None
@@ -110,6 +110,24 @@ def _verdict(ratio: float, entries: tuple) -> BoatReport:
     if ratio <= 0.0:
         return BoatReport(1, "out of the water", entries)
     return BoatReport(0, f"floating, {100 * ratio:.0f} % submerged", entries)
+
+
+def _against_the_waves(c: GroupContact, sea: WaveField, t: float) -> GroupContact:
+    """``c``, or a ``linear`` group's contact with its hulls clipped at the wave surface.
+
+    A ``linear`` group meets the calm-water plane; what is under water is reported against
+    the water that is there. One surface query at the hull's vertices, at the diagnostics
+    rate only.
+    """
+    g = c.group
+    if g.mesh is None or g.mesh.pressure != "linear":
+        return c
+    surface = sample_surface(sea, c.world[:, :2], t, min_wavelength=g.min_wavelength,
+                             precision=g.wave_precision)
+    depths = surface.heights - c.world[:, 2]
+    wet = clip_hulls(g.faces, c.world, depths)
+    return replace(c, depths=depths, surface=surface, wet=wet,
+                   wet_owner=g.face_owner.take(wet.faces))
 
 
 def _group_values(c: GroupContact, state: FleetState, volumes: np.ndarray,
