@@ -14,7 +14,7 @@ import numpy as np
 
 from boat_dynamics.physics.mesh_buoyancy import SubmergedTriangles, clip_hulls
 from boat_dynamics.physics.rigid_body import rotation_matrix
-from boat_dynamics.physics.slamming import wetted_added_mass
+from boat_dynamics.physics.slamming import swept_volumes, wetted_added_mass
 from boat_dynamics.physics.system import FleetState, Group, System
 from boat_dynamics.physics.wrench import sum_by_owner
 from ocean_sim.physics.waves import (
@@ -46,7 +46,10 @@ class GroupContact:
             takes it at the reference point.
         waterline: (G,) kg wetted added mass of strip theory and (G, 3) m world centroid of
             the waterline (:func:`boat_dynamics.physics.slamming.wetted_added_mass`), for a
-            mesh group with slamming; else None.
+            mesh group with momentum slamming; else None.
+        swept: Kerner's swept volumes of the group's triangles at the state
+            (:func:`boat_dynamics.physics.slamming.swept_volumes`), for a mesh group with
+            ``kerner`` slamming; else None.
     """
 
     group: Group
@@ -59,6 +62,7 @@ class GroupContact:
     wet_owner: np.ndarray | None
     water_velocity: np.ndarray | None = None
     waterline: tuple[np.ndarray, np.ndarray] | None = None
+    swept: tuple[np.ndarray, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -135,8 +139,15 @@ def contact(system: System, state: FleetState, sea: WaveField) -> Contact:
             waterline = wetted_added_mass(g.mesh.slamming, g.faces, world, depths, g.face_owner,
                                           rot[g.index], ref[g.index], g.length,
                                           system.water_density[g.index])
+        swept = None
+        if g.mesh is not None and g.mesh.slamming.model == "kerner":
+            r = rot[g.index]
+            swept = swept_volumes(g.faces, world, g.face_owner, wet.faces, wet.areas,
+                                  np.einsum("gij,gj->gi", r, state.velocity[g.index]),
+                                  np.einsum("gij,gj->gi", r, state.angular_velocity[g.index]),
+                                  state.position[g.index])
         out.append(GroupContact(g, rot[g.index], world, depths, surface, at_ref, wet,
-                                wet_owner, water, waterline))
+                                wet_owner, water, waterline, swept))
     return Contact(state.position, state.orientation, state.t, sea, rot, tuple(out))
 
 

@@ -21,11 +21,11 @@ from boat_dynamics.physics.mooring import mooring_wrench
 from boat_dynamics.physics.propulsion import thrust
 from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
-from boat_dynamics.physics.slamming import kerner_wrench, slamming_wrench, swept_volumes
+from boat_dynamics.physics.slamming import kerner_wrench, slamming_wrench
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import Wrench
 
-__all__ = ["forces", "group_swept", "previous_swept"]
+__all__ = ["forces", "previous_swept"]
 
 
 def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact
@@ -142,21 +142,11 @@ def _slamming(system: System, state: FleetState, contact: Contact) -> Wrench:
             wrench = slamming_wrench(added, state.slamming[i, 0], elapsed[i], w, centroid,
                                      com, c.rotation)
         else:  # Kerner
-            swept = group_swept(system, state, c)
-            before = swept[0] if state.swept is None else previous_swept(state, c)
-            wrench = kerner_wrench(g.mesh.slamming, swept, before, g.face_owner, elapsed[i],
+            before = c.swept[0] if state.swept is None else previous_swept(state, c)
+            wrench = kerner_wrench(g.mesh.slamming, c.swept, before, g.face_owner, elapsed[i],
                                    system.mass[i], com, c.rotation)
         force[i], torque[i] = wrench.force, wrench.torque
     return Wrench(force, torque)
-
-
-def group_swept(system: System, state: FleetState, c: GroupContact) -> tuple[np.ndarray, ...]:
-    """:func:`.slamming.swept_volumes` of one mesh group's hulls at ``state``."""
-    i, g = c.group.index, c.group
-    return swept_volumes(g.faces, c.world, g.face_owner, c.wet.faces, c.wet.areas,
-                         np.einsum("gij,gj->gi", c.rotation, state.velocity[i]),
-                         np.einsum("gij,gj->gi", c.rotation, state.angular_velocity[i]),
-                         state.position[i])
 
 
 def previous_swept(state: FleetState, c: GroupContact) -> np.ndarray:

@@ -21,7 +21,7 @@ import numpy as np
 from boat_dynamics.physics import contact as _contact
 from boat_dynamics.physics.contact import Contact
 from boat_dynamics.physics.damping import velocity_decay
-from boat_dynamics.physics.forces import forces, group_swept
+from boat_dynamics.physics.forces import forces
 from boat_dynamics.physics.keel import reflect_off_keel
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, panelled
 from boat_dynamics.physics.model import BoatParams
@@ -246,14 +246,14 @@ def _waterline_now(system: System, state: FleetState, groups: list) -> np.ndarra
 
 def _swept_now(system: System, state: FleetState, groups: list) -> np.ndarray | None:
     """(B, F, 3) Kerner's S_i v_i of each Kerner hull's triangles at ``state``, or None."""
-    kerner = [c for c in groups if c.waterline is None]
+    kerner = [c for c in groups if c.swept is not None]
     if not kerner:
         return None
     size = max(int(c.group.face_local.max()) + 1 for c in kerner)
     out = np.zeros((system.count, size, 3))
     for c in kerner:
         g = c.group
-        out[g.index[g.face_owner], g.face_local] = group_swept(system, state, c)[0]
+        out[g.index[g.face_owner], g.face_local] = c.swept[0]
     return out
 
 

@@ -118,8 +118,6 @@ def test_slamming_is_refused_off_the_mesh_model_or_unknown():
 
 def _kerner_drop(params, speed, dt, t_end):
     """Kerner's slamming force (world z) on the wedge moving down at ``speed``."""
-    from boat_dynamics.physics.forces import group_swept
-
     system, sea = System.build([params]), WaveField()
     times = np.arange(0.0, t_end, dt) + dt / 3
     out, before = [], None
@@ -131,7 +129,7 @@ def _kerner_drop(params, speed, dt, t_end):
         c = contact_module.contact(system, state, sea)
         out.append(forces(system, state, FleetInputs.stack([BoatInputs()]), c)[0]
                    .slamming.force[0, 2])
-        before = group_swept(system, state, c.groups[0])[0][None]
+        before = c.groups[0].swept[0][None]
     return times, np.array(out)
 
 
@@ -179,8 +177,6 @@ def test_kerner_leaves_a_heaving_box_and_a_rising_hull_alone(tmp_path):
     wedge = _wedge(tmp_path, "kerner")
     for params, speed, z0 in ((box, 1.0, 0.0), (wedge, -1.0, HEIGHT / 2 - 0.2)):
         system, sea = System.build([params]), WaveField()
-        from boat_dynamics.physics.forces import group_swept
-
         before = None
         for k in range(5):
             t = 0.01 * k
@@ -191,7 +187,7 @@ def test_kerner_leaves_a_heaving_box_and_a_rising_hull_alone(tmp_path):
             c = contact_module.contact(system, state, sea)
             f = forces(system, state, FleetInputs.stack([BoatInputs()]), c)[0].slamming
             assert np.abs(f.force).max() < 1e-9 and np.abs(f.torque).max() < 1e-9
-            before = group_swept(system, state, c.groups[0])[0][None]
+            before = c.groups[0].swept[0][None]
 
 
 def test_kerners_options_are_read_and_checked():
