@@ -5,8 +5,11 @@ SHELL := /bin/bash
 PYTHON ?= $(shell command -v python3.11 || command -v python3.12 || command -v python3.10 || command -v python3)
 VENV := .venv
 VPY := $(VENV)/bin/python
-MSGS := ros2_ws/src/boat_msgs
-MSGS_SRC := $(MSGS)/CMakeLists.txt $(MSGS)/package.xml $(wildcard $(MSGS)/msg/*.msg $(MSGS)/srv/*.srv)
+# Interface packages built into the venv: boatsim's own, and tf2_msgs (no PyPI wheel; the
+# upstream Jazzy definitions, so /tf's type hash equals a ROS install's).
+MSG_PKGS := boat_msgs tf2_msgs
+MSGS_SRC := $(foreach p,$(MSG_PKGS),ros2_ws/src/$(p)/CMakeLists.txt ros2_ws/src/$(p)/package.xml \
+            $(wildcard ros2_ws/src/$(p)/msg/*.msg ros2_ws/src/$(p)/srv/*.srv ros2_ws/src/$(p)/action/*.action))
 ROSENV := VIRTUAL_ENV=$(abspath $(VENV)) AMENT_PREFIX_PATH=$(abspath $(VENV)) PATH=$(abspath $(VENV))/bin:$$PATH
 ARGS ?=
 
@@ -25,15 +28,17 @@ $(VENV)/.deps-installed: $(VENV)/.ros-installed requirements/dev.txt pyproject.t
 	@touch $@
 
 $(VENV)/.msgs-built: $(VENV)/.ros-installed $(MSGS_SRC)
-	@echo "building boat_msgs into $(VENV)"
-	@rm -rf build/boat_msgs && mkdir -p build/boat_msgs
-	@cd build/boat_msgs && $(ROSENV) cmake $(abspath $(MSGS)) \
-	    -DCMAKE_PREFIX_PATH=$(abspath $(VENV)) -DCMAKE_INSTALL_PREFIX=$(abspath $(VENV)) \
-	    -DPython3_EXECUTABLE=$(abspath $(VPY)) -DBUILD_TESTING=OFF > cmake.log 2>&1 \
-	    || { tail -40 cmake.log; exit 1; }
-	@cd build/boat_msgs && $(ROSENV) cmake --build . --parallel 2 --target install > build.log 2>&1 \
-	    || { tail -40 build.log; exit 1; }
-	@$(VPY) -c "import boat_msgs.msg, boat_msgs.srv" && touch $@
+	@for pkg in $(MSG_PKGS); do \
+	    echo "building $$pkg into $(VENV)"; \
+	    rm -rf build/$$pkg && mkdir -p build/$$pkg && cd build/$$pkg && \
+	    { $(ROSENV) cmake $(abspath ros2_ws/src)/$$pkg \
+	        -DCMAKE_PREFIX_PATH=$(abspath $(VENV)) -DCMAKE_INSTALL_PREFIX=$(abspath $(VENV)) \
+	        -DPython3_EXECUTABLE=$(abspath $(VPY)) -DBUILD_TESTING=OFF > cmake.log 2>&1 \
+	      || { tail -40 cmake.log; exit 1; }; } && \
+	    { $(ROSENV) cmake --build . --parallel 2 --target install > build.log 2>&1 \
+	      || { tail -40 build.log; exit 1; }; } && cd $(CURDIR) || exit 1; \
+	done
+	@$(VPY) -c "import boat_msgs.msg, boat_msgs.srv, tf2_msgs.msg" && touch $@
 
 run: setup
 	$(VENV)/bin/boatsim run $(ARGS)

@@ -11,21 +11,31 @@ from geometry_msgs.msg import (
     Point,
     PoseStamped,
     Quaternion,
+    Transform,
+    TransformStamped,
     TwistStamped,
+    TwistWithCovarianceStamped,
     Vector3,
     WrenchStamped,
 )
 from nav_msgs.msg import Odometry
+from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 from std_msgs.msg import Header
+from tf2_msgs.msg import TFMessage
 
+from boat_dynamics.physics.sensors import GnssReading, ImuReading
 from boat_msgs_py.names import WORLD_FRAME
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
 __all__ = [
     "diagnostic_array",
+    "gnss_velocity",
+    "imu",
+    "nav_sat_fix",
     "odometry",
     "pose_stamped",
     "seconds_to_time",
+    "tf_message",
     "time_to_seconds",
     "twist_stamped",
     "vectors",
@@ -137,3 +147,51 @@ def diagnostic_array(stamp: Time, statuses: list[tuple[str, int, str, tuple]]) -
                                  hardware_id=name,
                                  values=[KeyValue(key=k, value=v) for k, v in values])
                 for name, level, message, values in statuses])
+
+
+def tf_message(stamp: Time, transforms: list[tuple[str, str, np.ndarray, np.ndarray]]
+               ) -> TFMessage:
+    """tf2_msgs/TFMessage of (parent, child, translation (3,) m, rotation (4,) xyzw) rows."""
+    return TFMessage(transforms=[
+        TransformStamped(header=_header(stamp, parent), child_frame_id=child,
+                         transform=Transform(translation=_vec(p), rotation=_quat(q)))
+        for parent, child, p, q in transforms])
+
+
+def _cov9(matrix: np.ndarray) -> list[float]:
+    return [float(x) for x in np.asarray(matrix, dtype=float).reshape(9)]
+
+
+def imu(stamp: Time, frame: str, reading: ImuReading) -> Imu:
+    """sensor_msgs/Imu of a reading: attitude, body rate, specific force, covariances."""
+    return Imu(header=_header(stamp, frame), orientation=_quat(reading.orientation),
+               orientation_covariance=_cov9(reading.orientation_covariance),
+               angular_velocity=_vec(reading.angular_velocity),
+               angular_velocity_covariance=_cov9(reading.angular_velocity_covariance),
+               linear_acceleration=_vec(reading.linear_acceleration),
+               linear_acceleration_covariance=_cov9(reading.linear_acceleration_covariance))
+
+
+def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading) -> NavSatFix:
+    """sensor_msgs/NavSatFix (degrees, WGS-84; covariance ENU, m^2, diagonal known)."""
+    return NavSatFix(
+        header=_header(stamp, frame),
+        status=NavSatStatus(status=NavSatStatus.STATUS_FIX, service=NavSatStatus.SERVICE_GPS),
+        latitude=float(np.degrees(reading.latitude)),
+        longitude=float(np.degrees(reading.longitude)), altitude=float(reading.altitude),
+        position_covariance=_cov9(reading.position_covariance),
+        position_covariance_type=NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN)
+
+
+def gnss_velocity(stamp: Time, frame: str, reading: GnssReading) -> TwistWithCovarianceStamped:
+    """geometry_msgs/TwistWithCovarianceStamped: the antenna's ENU velocity.
+
+    Linear only; the angular part is unknown: -1 on its covariance diagonal, as drivers do.
+    """
+    msg = TwistWithCovarianceStamped(header=_header(stamp, frame))
+    msg.twist.twist.linear = _vec(reading.velocity)
+    cov = np.zeros((6, 6))
+    cov[:3, :3] = reading.velocity_covariance
+    cov[3, 3] = cov[4, 4] = cov[5, 5] = -1.0
+    msg.twist.covariance = [float(x) for x in cov.reshape(36)]
+    return msg

@@ -18,6 +18,8 @@ __all__ = [
     "ROSOUT",
     "SAMPLE_SURFACE",
     "SURFACE_CLOUD",
+    "TF",
+    "TF_STATIC",
     "TWIST",
     "WAVE_FIELD",
     "WORLD_FRAME",
@@ -25,6 +27,10 @@ __all__ = [
     "boat_of",
     "boat_topic",
     "child_frame",
+    "gnss_fix_topic",
+    "gnss_vel_topic",
+    "imu_topic",
+    "sensor_frame",
     "wrench_topic",
 ]
 
@@ -54,6 +60,11 @@ DIAGNOSTICS = "/diagnostics"
 ROSOUT = "/rosout"
 PARAMETER_EVENTS = "/parameter_events"
 
+#: tf2_msgs/TFMessage: world -> <boat>/base_link of every boat (``publish_tf``).
+TF = "/tf"
+#: tf2_msgs/TFMessage, latched: <boat>/base_link -> <boat>/<sensor>_link of every sensor.
+TF_STATIC = "/tf_static"
+
 WORLD_FRAME = "world"
 
 
@@ -79,3 +90,23 @@ def wrench_topic(boat: str, source: str) -> str:
 def child_frame(boat: str) -> str:
     """The body frame id of a boat: ``<boat>/base_link`` (``base_link`` for the root boat)."""
     return f"{boat}/base_link" if boat else "base_link"
+
+
+def sensor_frame(boat: str, sensor: str) -> str:
+    """A sensor's frame id: ``<boat>/<sensor>_link`` (``<sensor>_link`` for the root boat)."""
+    return f"{boat}/{sensor}_link" if boat else f"{sensor}_link"
+
+
+def imu_topic(boat: str, sensor: str) -> str:
+    """sensor_msgs/Imu of an IMU named ``sensor``: ``<boat>/<sensor>/data``."""
+    return boat_topic(boat, f"{sensor}/data")
+
+
+def gnss_fix_topic(boat: str, sensor: str) -> str:
+    """sensor_msgs/NavSatFix of a GNSS receiver named ``sensor``: ``<boat>/<sensor>/fix``."""
+    return boat_topic(boat, f"{sensor}/fix")
+
+
+def gnss_vel_topic(boat: str, sensor: str) -> str:
+    """geometry_msgs/TwistWithCovarianceStamped, ENU: ``<boat>/<sensor>/vel``."""
+    return boat_topic(boat, f"{sensor}/vel")

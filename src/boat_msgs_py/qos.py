@@ -13,8 +13,11 @@ __all__ = [
     "COMMAND_QOS",
     "DIAGNOSTICS_QOS",
     "RECORD_QOS",
+    "SENSOR_QOS",
     "STATE_QOS",
     "SURFACE_QOS",
+    "TF_QOS",
+    "TF_STATIC_QOS",
     "WAVE_FIELD_QOS",
     "latched",
 ]
@@ -53,6 +56,20 @@ SURFACE_QOS = QoSProfile(
     reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
 )
 
+#: /tf: reliable, last 100, volatile: tf2_ros's ``DynamicBroadcasterQoS`` and listener.
+TF_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=100,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)
+#: /tf_static: reliable, transient-local, last 1: tf2_ros's ``StaticBroadcasterQoS`` (a late
+#: listener gets the sensors' mounting transforms).
+TF_STATIC_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=1,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+)
+#: <ns>/<imu>/data, <ns>/<gnss>/fix and vel: reliable, last 10, volatile (best-effort
+#: sensor-data subscribers connect too).
+SENSOR_QOS = STATE_QOS
 #: A recorder's subscriptions: reliable, a deep queue (a busy recorder must not drop).
 RECORD_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
 

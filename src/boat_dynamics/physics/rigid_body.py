@@ -23,6 +23,7 @@ __all__ = [
     "integrate_coupled",
     "mass_matrix",
     "quat_from_euler",
+    "quat_from_rotation_vector",
     "quat_multiply",
     "quat_to_euler",
     "rotation_matrix",
@@ -131,6 +132,11 @@ def mass_matrix(mass: float, moments: np.ndarray, products: np.ndarray) -> np.nd
     out[3:, 3:] = inertia_tensor(np.asarray(moments, dtype=float),
                                  np.asarray(products, dtype=float))
     return out
+
+
+def quat_from_rotation_vector(rotation_vector: np.ndarray) -> np.ndarray:
+    """Unit (..., 4) quaternions of rotations by |v| rad about v/|v|, from (..., 3) v."""
+    return _quat_exp(np.asarray(rotation_vector, dtype=float))
 
 
 def _quat_exp(rotation_vector: np.ndarray) -> np.ndarray:

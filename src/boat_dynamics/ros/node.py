@@ -13,6 +13,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from boat_msgs.msg import WaveField as WaveFieldMsg
+from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
@@ -33,6 +34,7 @@ from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import cross
+from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
     clock_template,
@@ -121,6 +123,10 @@ class DynamicsNode(Node):
             description="s without a cmd_thrust message after which thrust is set to 0.",
             floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
         self._cmd_timeout = self.get_parameter("cmd_timeout").value  # read every step: cached
+        self.declare_parameter("publish_tf", sim.publish_tf, ParameterDescriptor(
+            description="Publish /tf world -> <boat>/base_link from the true pose (false: a "
+                        "localization stack owns that transform)."))
+        self._publish_tf = bool(self.get_parameter("publish_tf").value)
         self._rate = sim.rate_hz
         self._substeps = sim.substeps
         self._dt = 1.0 / (sim.rate_hz * sim.substeps)
@@ -146,6 +152,10 @@ class DynamicsNode(Node):
         self._remedies: list[str] | None = None  # per boat, for /diagnostics (params only)
         self._clock_template = clock_template()
         self.boats = [self._make_boat(spec, i) for i, spec in enumerate(scenario.boats)]
+        self._transforms = TransformPublisher(self, list(scenario.boats), tap)
+        self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
+        self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
+        self._transforms.publish_static(seconds_to_time(clock.epoch + clock.t))
         self.commands_received = 0
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
@@ -251,6 +261,8 @@ class DynamicsNode(Node):
         for p in params:
             if p.name == "cmd_timeout":
                 self._cmd_timeout = float(p.value)
+            elif p.name == "publish_tf":
+                self._publish_tf = bool(p.value)
 
     def _on_wave_field(self, msg: WaveFieldMsg) -> None:
         try:
@@ -348,6 +360,7 @@ class DynamicsNode(Node):
         for _ in range(self._substeps):
             done = pipeline.step(self._system, self._state, inputs, self.sea, self._dt,
                                  self._contact_if_known())
+            self._before = self._state
             self._state, self._forces, self._contact = done.state, done.forces, None
         self._sim_clock.steps += 1
         self.publish_outputs()
@@ -360,6 +373,10 @@ class DynamicsNode(Node):
             self._clock_pub.publish(self._clock_template.pack(sec, nanosec))
         if self._due(k, self._rate, self._publish_rate):
             self._publish_states(sec, nanosec)
+        if len(self._sensors) and self._before is not None:
+            self._sensors.publish_due(lambda rate: self._due(k, self._rate, rate),
+                                      seconds_to_time(self._sim_clock.epoch + self._sim_clock.t),
+                                      self._system.center_of_mass, self._before, self._state)
         if self._due(k, self._rate, self._diag_rate):
             self._publish_wrenches(sec, nanosec)
             self._publish_diagnostics(seconds_to_time(self._sim_clock.epoch
@@ -380,6 +397,8 @@ class DynamicsNode(Node):
                                                      *omega[i]))
             boat.pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
             boat.pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
+        if self._publish_tf:
+            self._transforms.publish(Time(sec=sec, nanosec=nanosec), pos, quat)
 
     def _publish_wrenches(self, sec: int, nanosec: int) -> None:
         """wrench/<source> of every boat: the forces that acted during the last step."""

@@ -39,6 +39,7 @@ from boat_dynamics.physics.scenario.models import (
     rudder_block,
 )
 from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
+from boat_dynamics.physics.scenario.sensors import sensors_block
 from boat_dynamics.physics.scenario.specs import BoatSpec, ScenarioError, SimulationSettings
 
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
@@ -48,7 +49,7 @@ DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
-              "inertia_scale", "inertia_products", "hydrodynamics")
+              "inertia_scale", "inertia_products", "hydrodynamics", "sensors")
 
 
 def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -93,7 +94,8 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
                                  {} if loaded is None else loaded)
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
-                    commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle))
+                    commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle),
+                    sensors=sensors_block(d.get("sensors"), f"{key}.sensors", sim.rate_hz))
 
 
 def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,

@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from boat_dynamics.physics.scenario.read import choice, mapping, number, only
+from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only
+from boat_dynamics.physics.scenario.sensors import datum_block
 from boat_dynamics.physics.scenario.specs import ScenarioError, SimulationSettings
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
@@ -23,7 +24,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
     d = mapping(raw, key)
     only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
                    "seed", "gravity", "water_density", "cmd_timeout", "substeps",
-                   "wave_precision"))
+                   "wave_precision", "datum", "publish_tf"))
     rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
     diag = number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
@@ -52,6 +53,8 @@ def simulation_block(raw: Any) -> SimulationSettings:
         cmd_timeout=number(d, "cmd_timeout", key, 1.0, 0.0, 3600.0, low_open=True, unit="s"),
         substeps=substeps,
         wave_precision=choice(d, "wave_precision", key, "float32", PRECISIONS),
+        datum=datum_block(d.get("datum")),
+        publish_tf=flag(d, "publish_tf", key, True),
     )
 
 

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.model import BoatParams, BoatState
+from boat_dynamics.physics.sensors import Datum, SensorSpec
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.waves import (
     Precision,
@@ -46,6 +47,8 @@ class SimulationSettings:
         substeps: physics substeps per step.
         wave_precision: precision of the boats' surface queries, ``float32`` (fast; heights
             within about 1e-5 m of float64) or ``float64``.
+        datum: the world origin on WGS-84 (GNSS fixes).
+        publish_tf: publish ``/tf`` (world -> each boat's base_link) from the true pose.
     """
 
     rate_hz: float = 100.0
@@ -59,6 +62,8 @@ class SimulationSettings:
     cmd_timeout: float = 1.0
     substeps: int = 1
     wave_precision: Precision = "float32"
+    datum: Datum = field(default_factory=Datum)
+    publish_tf: bool = True
 
 
 @dataclass(frozen=True)
@@ -70,12 +75,14 @@ class BoatSpec:
         params: its physical parameters.
         initial: its initial state.
         commands: scripted commands, or None to follow the command topics.
+        sensors: its sensors (IMU, GNSS), in the file's order.
     """
 
     name: str
     params: BoatParams
     initial: BoatState
     commands: CommandScript | None
+    sensors: tuple[SensorSpec, ...] = ()
 
 
 @dataclass(frozen=True)

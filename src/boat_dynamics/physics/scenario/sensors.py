@@ -1,0 +1,121 @@
+"""The ``sensors`` list of a boat and the ``simulation.datum`` block."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from boat_dynamics.physics.scenario.read import mapping, number, only, vector
+from boat_dynamics.physics.scenario.specs import ScenarioError
+from boat_dynamics.physics.sensors import (
+    Datum,
+    GnssNoise,
+    GnssSpec,
+    ImuSpec,
+    InertialNoise,
+    SensorSpec,
+)
+from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
+
+__all__ = ["SENSOR_TYPES", "datum_block", "sensors_block"]
+
+#: The ``type`` of a sensor.
+SENSOR_TYPES = ("imu", "gnss")
+
+
+def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
+    """``{latitude_deg, longitude_deg, altitude}``: the world origin on WGS-84."""
+    d = mapping(raw, key)
+    only(d, key, ("latitude_deg", "longitude_deg", "altitude"))
+    default = Datum()
+    return Datum(
+        latitude=math.radians(number(d, "latitude_deg", key, math.degrees(default.latitude),
+                                     -89.0, 89.0, unit="deg")),
+        longitude=math.radians(number(d, "longitude_deg", key,
+                                      math.degrees(default.longitude), -180.0, 180.0,
+                                      unit="deg")),
+        altitude=number(d, "altitude", key, 0.0, -1000.0, 10000.0, unit="m"))
+
+
+def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, ...]:
+    """A boat's ``sensors``: a list of ``{type, name, rate_hz, position, noise}``.
+
+    Names are unique on the boat (they name its topics and frames); rates are at most the
+    physics rate (``simulation.rate_hz``), as a sensor reads the simulated motion.
+    """
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise ScenarioError(key, raw, "must be a list of sensors ({type: imu|gnss, ...})")
+    out: list[SensorSpec] = []
+    for i, item in enumerate(raw):
+        k = f"{key}[{i}]"
+        d = mapping(item, k)
+        only(d, k, ("type", "name", "rate_hz", "position", "noise"))
+        kind = d.get("type")
+        if kind not in SENSOR_TYPES:
+            raise ScenarioError(f"{k}.type", kind, f"must be one of: {', '.join(SENSOR_TYPES)}")
+        name = d.get("name", kind)
+        if (not isinstance(name, str) or not name or not name[0].isalpha()
+                or not name.replace("_", "a").isalnum()):
+            raise ScenarioError(f"{k}.name", name, "must be a ROS name: a letter, then letters, "
+                                                   "digits or underscores")
+        if name in {s.name for s in out}:
+            raise ScenarioError(f"{k}.name", name, "must be unique among the boat's sensors")
+        rate = number(d, "rate_hz", k, 100.0 if kind == "imu" else 5.0, 0.0,
+                      physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)")
+        position = vector(d, "position", k, 3, [0.0, 0.0, 0.0])
+        noise = mapping(d.get("noise"), f"{k}.noise")
+        if kind == "imu":
+            out.append(_imu(name, rate, position, noise, f"{k}.noise"))
+        else:
+            out.append(GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise")))
+    return tuple(out)
+
+
+_TRIAD_KEYS = ("noise_density", "random_walk", "bias_instability", "bias_correlation_time")
+
+
+def _imu(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
+         key: str) -> ImuSpec:
+    """An IMU: ``noise: {gyroscope: {...}, accelerometer: {...}, orientation_sigma_deg}``."""
+    only(d, key, ("gyroscope", "accelerometer", "orientation_sigma_deg"))
+    sigma = number(d, "orientation_sigma_deg", key, 0.1, 0.0, 10.0, unit="deg")
+    return ImuSpec(name, rate, position,
+                   _triad(d.get("gyroscope"), f"{key}.gyroscope", GYROSCOPE, "rad/s"),
+                   _triad(d.get("accelerometer"), f"{key}.accelerometer", ACCELEROMETER,
+                          "m/s^2"),
+                   math.radians(sigma))
+
+
+def _triad(raw: Any, key: str, default: InertialNoise, unit: str) -> InertialNoise:
+    """One triad's noise; ``unit`` is its measurement's (rad/s or m/s^2)."""
+    d = mapping(raw, key)
+    only(d, key, _TRIAD_KEYS)
+    units = (f"{unit}/sqrt(Hz)", f"{unit}/s/sqrt(Hz)", unit, "s")
+    values = [number(d, k, key, getattr(default, k), 0.0,
+                     1e7 if k == "bias_correlation_time" else 1e3, unit=u)
+              for k, u in zip(_TRIAD_KEYS, units, strict=True)]
+    if values[3] == 0.0 and values[2] > 0.0:
+        raise ScenarioError(f"{key}.bias_correlation_time", 0.0,
+                            "must be > 0 s when bias_instability > 0")
+    return InertialNoise(*values)
+
+
+def _gnss_noise(d: Mapping[str, Any], key: str) -> GnssNoise:
+    fields = ("horizontal_sigma", "vertical_sigma", "bias_sigma", "bias_correlation_time",
+              "velocity_sigma")
+    only(d, key, fields)
+    default = GnssNoise()
+    values = {f: number(d, f, key, getattr(default, f), 0.0,
+                        1e7 if f == "bias_correlation_time" else 1e4,
+                        unit="s" if f == "bias_correlation_time" else
+                        ("m/s" if f == "velocity_sigma" else "m"))
+              for f in fields}
+    if values["bias_correlation_time"] == 0.0 and values["bias_sigma"] > 0.0:
+        raise ScenarioError(f"{key}.bias_correlation_time", 0.0,
+                            "must be > 0 s when bias_sigma > 0")
+    return GnssNoise(**values)

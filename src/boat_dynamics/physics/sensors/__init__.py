@@ -1,0 +1,36 @@
+"""Sensor models of the core (pure numpy): what an IMU and a GNSS receiver on a boat read.
+
+Each sensor is a frozen spec, a frozen noise state and a function ``measure_*(spec, key,
+state, truth...) -> (reading, state)``; the noise is drawn from the scenario seed by sample
+index (:mod:`.noise`), so the same seed gives the same readings.
+"""
+
+from boat_dynamics.physics.sensors.gnss import (
+    Datum,
+    GnssNoise,
+    GnssReading,
+    GnssSpec,
+    GnssState,
+    enu_to_geodetic,
+    geodetic_to_enu,
+    gnss_start,
+    measure_gnss,
+)
+from boat_dynamics.physics.sensors.imu import (
+    ImuReading,
+    ImuSpec,
+    ImuState,
+    InertialNoise,
+    imu_start,
+    measure_imu,
+    true_motion,
+)
+from boat_dynamics.physics.sensors.noise import stream_key
+
+__all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "ImuReading",
+           "ImuSpec", "ImuState", "InertialNoise", "SensorSpec", "enu_to_geodetic",
+           "geodetic_to_enu", "gnss_start", "imu_start", "measure_gnss", "measure_imu",
+           "stream_key", "true_motion"]
+
+#: A sensor of a boat's ``sensors`` list.
+SensorSpec = ImuSpec | GnssSpec

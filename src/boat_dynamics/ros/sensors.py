@@ -1,0 +1,154 @@
+"""The sensors and transforms a dynamics node publishes: /tf, /tf_static, IMU and GNSS.
+
+A thin adapter over :mod:`boat_dynamics.physics.sensors`: each sensor's noise state is kept
+here between readings (the core's ``measure_*`` returns it), its stream keyed by the scenario
+seed, the boat's name and the sensor's name; messages are built by :mod:`boat_msgs_py.convert`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from geometry_msgs.msg import TwistWithCovarianceStamped
+from rclpy.node import Node
+from sensor_msgs.msg import Imu, NavSatFix
+from tf2_msgs.msg import TFMessage
+
+from boat_dynamics.physics.model import BoatState
+from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
+from boat_dynamics.physics.sensors import (
+    GnssSpec,
+    ImuSpec,
+    SensorSpec,
+    gnss_start,
+    imu_start,
+    measure_gnss,
+    measure_imu,
+    stream_key,
+    true_motion,
+)
+from boat_dynamics.physics.system import FleetState
+from boat_msgs_py import names
+from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, tf_message
+from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
+from boat_msgs_py.tap import Tap, TappedPublisher
+
+__all__ = ["SensorPublisher", "TransformPublisher"]
+
+_IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
+
+
+@dataclass
+class _Sensor:
+    boat: BoatSpec
+    spec: SensorSpec
+    key: np.ndarray
+    state: object  # ImuState | GnssState
+    pubs: list[TappedPublisher]
+    frame: str
+
+
+class TransformPublisher:
+    """``/tf`` (world -> each boat's base_link) and ``/tf_static`` (to every sensor's link).
+
+    Args:
+        node: the owning node.
+        boats: the boats, in fleet order.
+        tap: the recorder's tap, or None.
+    """
+
+    def __init__(self, node: Node, boats: list[BoatSpec], tap: Tap | None) -> None:
+        self._pub = TappedPublisher(node, TFMessage, names.TF, TF_QOS, tap)
+        self._children = [names.child_frame(b.name) for b in boats]
+        self._static = [(names.child_frame(b.name), names.sensor_frame(b.name, s.name),
+                         s.position, _IDENTITY) for b in boats for s in b.sensors]
+        self._static_pub = (TappedPublisher(node, TFMessage, names.TF_STATIC, TF_STATIC_QOS, tap)
+                            if self._static else None)
+
+    def publish_static(self, stamp) -> None:
+        """``/tf_static``: every sensor's mounting (published once; latched)."""
+        if self._static_pub is not None:
+            self._static_pub.publish(tf_message(stamp, self._static))
+
+    def publish(self, stamp, positions: np.ndarray, orientations: np.ndarray) -> None:
+        """``/tf`` of every boat: (K, 3) m reference points, (K, 4) orientations."""
+        self._pub.publish(tf_message(stamp, [
+            (names.WORLD_FRAME, child, p, q)
+            for child, p, q in zip(self._children, positions, orientations, strict=True)]))
+
+
+class SensorPublisher:
+    """Every sensor of every boat: readings at each sensor's rate, from the true motion.
+
+    Args:
+        node: the owning node.
+        boats: the boats, in fleet order.
+        sim: the simulation settings (seed, datum, gravity, physics rate).
+        tap: the recorder's tap, or None.
+    """
+
+    def __init__(self, node: Node, boats: list[BoatSpec], sim: SimulationSettings,
+                 tap: Tap | None) -> None:
+        self._sim = sim
+        self._sensors: list[tuple[int, _Sensor]] = []
+        for index, boat in enumerate(boats):
+            for spec in boat.sensors:
+                key = stream_key(sim.seed, boat.name, spec.name)
+                if isinstance(spec, ImuSpec):
+                    pubs = [TappedPublisher(node, Imu, names.imu_topic(boat.name, spec.name),
+                                            SENSOR_QOS, tap)]
+                    state = imu_start(spec, key)
+                else:
+                    pubs = [TappedPublisher(node, NavSatFix,
+                                            names.gnss_fix_topic(boat.name, spec.name),
+                                            SENSOR_QOS, tap),
+                            TappedPublisher(node, TwistWithCovarianceStamped,
+                                            names.gnss_vel_topic(boat.name, spec.name),
+                                            SENSOR_QOS, tap)]
+                    state = gnss_start(spec, key)
+                self._sensors.append((index, _Sensor(boat, spec, key, state, pubs,
+                                                     names.sensor_frame(boat.name, spec.name))))
+
+    def __len__(self) -> int:
+        return len(self._sensors)
+
+    def publish_due(self, due, stamp, center_of_mass: np.ndarray, before: FleetState,
+                    after: FleetState) -> None:
+        """Read and publish the sensors ``due(rate_hz)`` says are due at this step.
+
+        Args:
+            due: rate (Hz) -> whether a stream at that rate publishes at this step.
+            stamp: builtin_interfaces/Time of ``after``.
+            center_of_mass: (K, 3) m, body frame, per boat.
+            before: the boats' state at the start of the last step.
+            after: their state now.
+        """
+        for index, sensor in self._sensors:
+            if not due(sensor.spec.rate_hz):
+                continue
+            if isinstance(sensor.spec, ImuSpec):
+                self._imu(sensor, stamp, center_of_mass[index], before.boat(index),
+                          after.boat(index))
+            else:
+                self._gnss(sensor, stamp, center_of_mass[index], after.boat(index))
+
+    def _imu(self, sensor: _Sensor, stamp, com: np.ndarray, before: BoatState,
+             after: BoatState) -> None:
+        spec = sensor.spec
+        omega, force = true_motion(com, before, after, spec.position, self._sim.gravity)
+        reading, sensor.state = measure_imu(spec, sensor.key, sensor.state, after.orientation,
+                                            omega, force)
+        sensor.pubs[0].publish(imu(stamp, sensor.frame, reading))
+
+    def _gnss(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState) -> None:
+        spec: GnssSpec = sensor.spec
+        rot = rotation_matrix(after.orientation)
+        antenna = after.position + rot @ (spec.position - com)
+        velocity = rot @ (after.velocity + np.cross(after.angular_velocity,
+                                                    spec.position - com))
+        reading, sensor.state = measure_gnss(spec, sensor.key, sensor.state, self._sim.datum,
+                                             antenna, velocity)
+        sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading))
+        sensor.pubs[1].publish(gnss_velocity(stamp, sensor.frame, reading))

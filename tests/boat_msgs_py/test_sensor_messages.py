@@ -1,0 +1,50 @@
+"""tf2_msgs built from the upstream definitions, and the sensor and transform messages."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import tf2_msgs
+from rosbags.typesys import Stores, get_typestore
+
+from boat_dynamics.physics.sensors import GnssReading, ImuReading
+from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, seconds_to_time, tf_message
+
+
+@pytest.mark.parametrize("name", ["TFMessage", "TF2Error"])
+def test_tf2_msgs_has_the_type_hashes_of_ros_2_jazzy(name):
+    # ros2_ws/src/tf2_msgs holds the upstream definitions (ros2/geometry2, jazzy): its type
+    # hashes, as rosidl generated them, equal those of the Jazzy release (rosbags' store, made
+    # from the released packages), so RViz, Foxglove and tf2 on a ROS install take our /tf
+    share = Path(tf2_msgs.__file__).resolve().parents[4] / "share" / "tf2_msgs" / "msg"
+    described = json.loads((share / f"{name}.json").read_text())
+    ours = {h["type_name"]: h["hash_string"] for h in described["type_hashes"]}
+    store = get_typestore(Stores.ROS2_JAZZY)
+    assert ours[f"tf2_msgs/msg/{name}"] == store.hash_rihs01(f"tf2_msgs/msg/{name}")
+
+
+def test_transforms_imu_and_fix_carry_the_readings():
+    stamp = seconds_to_time(1.5)
+    tf = tf_message(stamp, [("world", "alpha/base_link", [1.0, 2.0, 3.0], [0, 0, 0.6, 0.8])])
+    (t,) = tf.transforms
+    assert (t.header.frame_id, t.child_frame_id, t.header.stamp) == ("world", "alpha/base_link",
+                                                                       stamp)
+    assert (t.transform.translation.y, t.transform.rotation.z) == (2.0, 0.6)
+    reading = ImuReading(np.array([0, 0, 0, 1.0]), np.array([0.1, 0.2, 0.3]),
+                         np.array([0, 0, 9.81]), np.eye(3) * 1e-6, np.eye(3) * 2e-6,
+                         np.eye(3) * 3e-6)
+    m = imu(stamp, "alpha/imu_link", reading)
+    assert m.header.frame_id == "alpha/imu_link"
+    assert (m.angular_velocity.z, m.linear_acceleration.z) == (0.3, 9.81)
+    assert list(m.linear_acceleration_covariance)[::4] == [3e-6] * 3
+    fix = GnssReading(math.radians(45.0), math.radians(-4.0), 12.0, np.diag([1.0, 2.0, 3.0]),
+                      np.array([1.0, -2.0, 0.5]), np.eye(3) * 0.01)
+    f = nav_sat_fix(stamp, "alpha/gnss_link", fix)
+    assert (f.latitude, f.longitude, f.altitude) == pytest.approx((45.0, -4.0, 12.0))
+    assert f.status.status == 0 and f.position_covariance_type == 2  # FIX, DIAGONAL_KNOWN
+    assert list(f.position_covariance)[::4] == [1.0, 2.0, 3.0]
+    v = gnss_velocity(stamp, "alpha/gnss_link", fix)
+    assert (v.twist.twist.linear.x, v.twist.twist.linear.y) == (1.0, -2.0)
+    assert list(v.twist.covariance)[::7] == [0.01, 0.01, 0.01, -1.0, -1.0, -1.0]

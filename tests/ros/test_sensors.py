@@ -1,0 +1,135 @@
+"""Sensors and transforms over ROS 2: /tf against /odom, /tf_static, IMU and GNSS readings.
+
+Each test runs `boatsim run --fast` on a small scenario and reads its bag: simulation time
+only, no wall-clock assumption.
+"""
+
+import math
+
+import numpy as np
+import pytest
+import yaml
+
+from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.sensors import Datum, geodetic_to_enu
+
+G = 9.81
+DATUM = {"latitude_deg": 45.0, "longitude_deg": -4.0, "altitude": 0.0}
+IMU = {"type": "imu", "name": "imu", "rate_hz": 100, "position": [0.5, 0.2, 0.3],
+       "noise": {"gyroscope": {"noise_density": 1e-3},
+                 "accelerometer": {"noise_density": 5e-3}}}
+GNSS = {"type": "gnss", "name": "gnss", "rate_hz": 5, "position": [-1.0, 0.0, 1.0],
+        "noise": {"horizontal_sigma": 1.0, "vertical_sigma": 2.0, "bias_sigma": 0.0}}
+
+
+def _scenario(tmp_path, seed=3, publish_tf=True, waves=False, imu=IMU):
+    data = {"simulation": {"seed": seed, "datum": DATUM, "publish_tf": publish_tf},
+            "boats": [{"name": "alpha", "sensors": [imu, GNSS]}]}
+    if waves:
+        data["ocean"] = {"components": [{"amplitude": 0.2, "wavelength": 20.0,
+                                         "direction_deg": 30.0, "steepness": 0.5}]}
+        data["boats"][0]["commands"] = [{"t": 0.0, "thrust": 0.6, "rudder": 0.2}]
+    path = tmp_path / f"sensors_{seed}_{publish_tf}_{waves}.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return path
+
+
+def _messages(bag):
+    """{topic: [(stamp ns, message)]} of a bag."""
+    from rosbags.highlevel import AnyReader
+
+    out = {}
+    with AnyReader([bag]) as reader:
+        for conn, stamp, raw in reader.messages():
+            out.setdefault(conn.topic, []).append((stamp, reader.deserialize(raw, conn.msgtype)))
+    return out
+
+
+def _run(boatsim, tmp_path, scenario, seconds, name):
+    bag = tmp_path / name
+    sim = boatsim("run", str(scenario), "--fast", "--duration", str(seconds), "--record",
+                  str(bag))
+    assert sim.wait(timeout=180) == 0, sim.output()
+    assert "Traceback" not in sim.output()
+    return _messages(bag)
+
+
+def _vec(v):
+    return np.array([v.x, v.y, v.z])
+
+
+def _quat(q):
+    return np.array([q.x, q.y, q.z, q.w])
+
+
+def test_tf_is_the_odometry_and_tf_static_mounts_every_sensor(boatsim, tmp_path):
+    msgs = _run(boatsim, tmp_path, _scenario(tmp_path, waves=True), 4, "bag")
+    odom = {stamp: m for stamp, m in msgs["/alpha/odom"]}
+    assert len(msgs["/tf"]) == len(odom) == 201  # 50 Hz, t = 0..4 s
+    for stamp, tf in msgs["/tf"]:
+        (t,) = tf.transforms
+        assert (t.header.frame_id, t.child_frame_id) == ("world", "alpha/base_link")
+        pose = odom[stamp].pose.pose
+        assert (t.header.stamp.sec, t.header.stamp.nanosec) == (
+            odom[stamp].header.stamp.sec, odom[stamp].header.stamp.nanosec)
+        np.testing.assert_array_equal(_vec(t.transform.translation), _vec(pose.position))
+        np.testing.assert_array_equal(_quat(t.transform.rotation), _quat(pose.orientation))
+    (_, static), = msgs["/tf_static"]
+    mounts = {(t.header.frame_id, t.child_frame_id): _vec(t.transform.translation)
+              for t in static.transforms}
+    assert set(mounts) == {("alpha/base_link", "alpha/imu_link"),
+                           ("alpha/base_link", "alpha/gnss_link")}
+    np.testing.assert_array_equal(mounts["alpha/base_link", "alpha/imu_link"], [0.5, 0.2, 0.3])
+    # the GNSS fixes convert back to the antenna's true position within the noise: the
+    # antenna is 1 m behind and 1 m above the hull reference point
+    datum = Datum(math.radians(45.0), math.radians(-4.0), 0.0)
+    errors = []
+    for stamp, fix in msgs["/alpha/gnss/fix"]:
+        assert fix.header.frame_id == "alpha/gnss_link"
+        pose = odom[stamp].pose.pose
+        antenna = _vec(pose.position) + rotation_matrix(_quat(pose.orientation)) @ [-1, 0, 1.0]
+        errors.append(geodetic_to_enu(datum, math.radians(fix.latitude),
+                                      math.radians(fix.longitude), fix.altitude) - antenna)
+        np.testing.assert_allclose(np.diag(np.reshape(fix.position_covariance, (3, 3))),
+                                   [1.0, 1.0, 4.0])
+    assert len(errors) == 20  # 5 Hz from the first step: t = 0.2 .. 4.0 s
+    assert np.all(np.abs(errors) < 4.5 * np.array([1.0, 1.0, 2.0]))
+    assert np.abs(np.array(errors)[:, :2]).max() > 0.1  # noise is there
+
+
+def test_an_imu_on_a_boat_at_rest_in_still_water_reads_g_with_its_noise(boatsim, tmp_path):
+    # white noise and a slow bias (no random walk, whose drift over the run would add to the
+    # spread): 2,000 readings
+    steady = {**IMU, "noise": {
+        "gyroscope": {"noise_density": 1e-3, "random_walk": 0.0},
+        "accelerometer": {"noise_density": 5e-3, "random_walk": 0.0}}}
+    msgs = _run(boatsim, tmp_path, _scenario(tmp_path, imu=steady), 20, "bag")
+    imu = [m for _, m in msgs["/alpha/imu/data"]]
+    assert len(imu) == 2000  # 100 Hz from the first step
+    acc = np.array([_vec(m.linear_acceleration) for m in imu])
+    gyro = np.array([_vec(m.angular_velocity) for m in imu])
+    assert imu[0].header.frame_id == "alpha/imu_link"
+    sigma_a, sigma_g = 5e-3 * 10, 1e-3 * 10  # density x sqrt(100 Hz)
+    # in 20 s the biases (300 s and 1000 s correlation times) barely move: the spread is the
+    # white noise's (within 5 %), the mean g plus the bias (within 3 bias sigmas)
+    np.testing.assert_allclose(acc.std(axis=0), sigma_a, rtol=0.05)
+    np.testing.assert_allclose(gyro.std(axis=0), sigma_g, rtol=0.05)
+    assert np.all(np.abs(acc.mean(axis=0) - [0, 0, G]) < 3 * 2.45e-3 + 4 * sigma_a / 44.7)
+    assert np.all(np.abs(gyro.mean(axis=0)) < 3 * 7e-5 + 4 * sigma_g / 44.7)
+    cov = np.reshape(imu[-1].linear_acceleration_covariance, (3, 3))
+    assert cov == pytest.approx(np.eye(3) * (sigma_a**2 + 2.45e-3**2), rel=1e-9)
+
+
+def test_the_same_seed_gives_the_same_sensor_readings_and_tf_can_be_left_out(boatsim,
+                                                                             tmp_path):
+    topics = ("/alpha/imu/data", "/alpha/gnss/fix", "/alpha/gnss/vel")
+
+    def readings(msgs):
+        return {t: [repr(m) for _, m in msgs[t]] for t in topics}
+
+    first = _run(boatsim, tmp_path, _scenario(tmp_path, waves=True), 2, "a")
+    again = _run(boatsim, tmp_path, _scenario(tmp_path, waves=True, publish_tf=False), 2, "b")
+    other = _run(boatsim, tmp_path, _scenario(tmp_path, seed=4, waves=True), 2, "c")
+    assert readings(first) == readings(again)
+    assert readings(first)["/alpha/imu/data"] != readings(other)["/alpha/imu/data"]
+    assert "/tf" in first and "/tf" not in again
