@@ -20,6 +20,8 @@ __all__ = [
     "SURFACE_CLOUD",
     "TF",
     "TF_STATIC",
+    "THRUSTER_ANGLE",
+    "THRUSTER_THRUST",
     "TWIST",
     "WAVE_FIELD",
     "WORLD_FRAME",
@@ -30,7 +32,9 @@ __all__ = [
     "gnss_fix_topic",
     "gnss_vel_topic",
     "imu_topic",
+    "is_command_topic",
     "sensor_frame",
+    "thruster_topic",
     "wrench_topic",
 ]
 
@@ -38,6 +42,9 @@ CMD_THRUST = "cmd_thrust"
 CMD_RUDDER = "cmd_rudder"
 #: The per-boat command names (a replay republishes these topics of a bag).
 COMMAND_NAMES = (CMD_THRUST, CMD_RUDDER)
+#: Per named thruster: ``thrusters/<name>/thrust`` (-1..1) and ``thrusters/<name>/angle`` (rad).
+THRUSTER_THRUST = "thrust"
+THRUSTER_ANGLE = "angle"
 ODOM = "odom"
 POSE = "pose"
 TWIST = "twist"
@@ -110,3 +117,20 @@ def gnss_fix_topic(boat: str, sensor: str) -> str:
 def gnss_vel_topic(boat: str, sensor: str) -> str:
     """geometry_msgs/TwistWithCovarianceStamped, ENU: ``<boat>/<sensor>/vel``."""
     return boat_topic(boat, f"{sensor}/vel")
+
+
+def thruster_topic(boat: str, thruster: str, command: str) -> str:
+    """A named thruster's command topic: ``<boat>/thrusters/<thruster>/<thrust|angle>``."""
+    return boat_topic(boat, f"thrusters/{thruster}/{command}")
+
+
+def is_command_topic(topic: str) -> bool:
+    """Whether ``topic`` is a boat's command: what a replay republishes.
+
+    The commands: ``cmd_thrust``, ``cmd_rudder``, and a named thruster's thrust or angle.
+    """
+    if any(boat_of(topic, n) is not None for n in COMMAND_NAMES):
+        return True
+    parts = topic.split("/")
+    return (len(parts) >= 4 and parts[-3] == "thrusters" and parts[-2] != ""
+            and parts[-1] in (THRUSTER_THRUST, THRUSTER_ANGLE))

@@ -48,3 +48,16 @@ def test_transforms_imu_and_fix_carry_the_readings():
     v = gnss_velocity(stamp, "alpha/gnss_link", fix)
     assert (v.twist.twist.linear.x, v.twist.twist.linear.y) == (1.0, -2.0)
     assert list(v.twist.covariance)[::7] == [0.01, 0.01, 0.01, -1.0, -1.0, -1.0]
+
+
+def test_thruster_topics_are_commands_a_replay_republishes():
+    from boat_msgs_py import names
+
+    assert names.thruster_topic("otter", "left", names.THRUSTER_THRUST) == (
+        "/otter/thrusters/left/thrust")
+    assert names.thruster_topic("", "jet", names.THRUSTER_ANGLE) == "/thrusters/jet/angle"
+    for topic in ("/cmd_thrust", "/a/cmd_rudder", "/otter/thrusters/left/thrust",
+                  "/thrusters/jet/angle"):
+        assert names.is_command_topic(topic)
+    for topic in ("/odom", "/a/thrusters/left", "/a/thrusters//thrust", "/a/thrust"):
+        assert not names.is_command_topic(topic)

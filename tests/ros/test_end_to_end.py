@@ -93,6 +93,10 @@ def test_bad_commands_are_refused_with_a_warning_and_the_sim_keeps_running(boats
     thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
     rudder = probe.node.create_publisher(Float64, "/cmd_rudder", 10)
     probe.spin_until(lambda: len(odoms) > 5, 30.0, "/odom")
+    # a message published before discovery has matched the publisher to the simulation's
+    # subscription is lost (reliable, volatile): wait for the match (a CI run lost all ten)
+    probe.spin_until(lambda: thrust.get_subscription_count() > 0
+                     and rudder.get_subscription_count() > 0, 30.0, "command subscriptions")
     for _ in range(10):
         thrust.publish(Float64(data=math.nan))
         rudder.publish(Float64(data=5.0))

@@ -18,7 +18,7 @@ from boat_dynamics.physics.diffraction import excitation_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, pressure_wrenches
 from boat_dynamics.physics.mooring import mooring_wrench
-from boat_dynamics.physics.propulsion import thrust
+from boat_dynamics.physics.propulsion import thrusters_wrench
 from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
 from boat_dynamics.physics.slamming import kerner_wrench, slamming_wrench
@@ -60,8 +60,9 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
                                         state.angular_velocity)
     if system.memory is not None and state.memory is not None:  # Cummins: the waves made
         damp = damp + Wrench(*memory_wrench(system.memory.output, state.memory))
-    push = _per_group(system, lambda g: thrust(g.propulsion, state.throttle[g.index],
-                                               inputs.rudder[g.index], com[g.index]))
+    _, angle = inputs.per_thruster()
+    push = _per_group(system, lambda g: thrusters_wrench(
+        g.propulsion, state.throttle[g.index], angle[g.index], com[g.index]))
     steer = _per_group(system, lambda g: rudder_wrench(
         g.rudder, inputs.rudder[g.index], relative[g.index, 0],
         system.water_density[g.index], com[g.index]))

@@ -5,6 +5,7 @@ SI units, body frame FLU, world frame ENU (REP-103). :mod:`boat_dynamics.physics
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -101,7 +102,8 @@ class BoatParams:
         damping_linear: (6,) N/(m/s) and N m/(rad/s), per body DOF.
         damping_quadratic: (6,) N/(m/s)^2 and N m/(rad/s)^2, per body DOF.
         added_mass: (6,) kg and kg m^2, per body DOF (diagonal).
-        propulsion: the thruster.
+        propulsion: the thruster, or a tuple of thrusters (at most
+            :data:`~.propulsion.MAX_THRUSTERS`); :attr:`thrusters` is always the tuple.
         rudder: the rudder.
         water_density: rho, kg/m^3.
         gravity: g, m/s^2.
@@ -143,7 +145,7 @@ class BoatParams:
     damping_linear: np.ndarray
     damping_quadratic: np.ndarray
     added_mass: np.ndarray
-    propulsion: Propulsion
+    propulsion: Propulsion | tuple[Propulsion, ...]
     rudder: Rudder
     water_density: float = WATER_DENSITY
     gravity: float = GRAVITY
@@ -162,6 +164,12 @@ class BoatParams:
     mooring: Mooring | None = None
     water_velocity: WaterVelocity = "reference_point"
 
+    @property
+    def thrusters(self) -> tuple[Propulsion, ...]:
+        """Every thruster of the boat (one for a single ``propulsion``)."""
+        p = self.propulsion
+        return p if isinstance(p, tuple) else (p,)
+
 
 @dataclass(frozen=True)
 class BoatState:
@@ -173,7 +181,8 @@ class BoatState:
         orientation: (4,) unit quaternion (x, y, z, w), body (FLU) to world.
         velocity: (3,) m/s, velocity of the centre of mass, body frame.
         angular_velocity: (3,) rad/s, body frame.
-        throttle: -1..1, the actual thrust fraction (lags the command with a time constant).
+        throttle: -1..1, the actual thrust fraction (lags the command with a time constant):
+            one for every thruster, or (T,) per thruster.
         control_weight: 0..1, how far the control mode has taken over since it was selected.
         memory: (N,) complex, the state of the boat's radiation memory
             (:mod:`boat_dynamics.physics.radiation`), or None: calm (all zero).
@@ -187,7 +196,7 @@ class BoatState:
     orientation: np.ndarray
     velocity: np.ndarray
     angular_velocity: np.ndarray
-    throttle: float = 0.0
+    throttle: float | np.ndarray = 0.0
     control_weight: float = 1.0
     memory: np.ndarray | None = None
     slamming: np.ndarray | None = None
@@ -199,12 +208,16 @@ class BoatInputs:
     """Actuator commands, already validated and within range.
 
     Attributes:
-        throttle: -1..1, commanded fraction of max thrust (negative = reverse).
+        throttle: -1..1, commanded fraction of max thrust (negative = reverse): one for every
+            thruster, or one per thruster (a sequence, thruster j at j).
         rudder: rad, + turns the bow to port (rudder and/or steerable nozzle).
+        thruster_angle: rad per thruster, the steering angles of steerable thrusters of a
+            thruster list, or None: the rudder angle.
     """
 
-    throttle: float = 0.0
+    throttle: float | Sequence[float] = 0.0
     rudder: float = 0.0
+    thruster_angle: Sequence[float] | None = None
 
 
 @dataclass(frozen=True)

@@ -192,10 +192,12 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     Raises:
         ValueError: ``contact`` belongs to another state or sea.
     """
-    throttle = np.empty(system.count)
+    commanded, _ = inputs.per_thruster()
+    throttle = np.array(commanded, dtype=float)  # slots past a boat's thrusters: unused
     for g in system.groups:
-        throttle[g.index] = lagged_throttle(g.propulsion, state.throttle[g.index],
-                                            inputs.throttle[g.index], dt)
+        for j, model in enumerate(g.propulsion):
+            throttle[g.index, j] = lagged_throttle(model, state.throttle[g.index, j],
+                                                   commanded[g.index, j], dt)
     state = replace(state, throttle=throttle)
     if contact is None:
         contact = _contact.contact(system, state, sea)

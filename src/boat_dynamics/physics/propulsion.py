@@ -17,7 +17,10 @@ import numpy as np
 
 from boat_dynamics.physics.wrench import Real, Wrench, cross
 
-__all__ = ["Propulsion", "lagged_throttle", "thrust"]
+__all__ = ["MAX_THRUSTERS", "Propulsion", "lagged_throttle", "thrust", "thrusters_wrench"]
+
+#: The most thrusters a boat may have; a fleet state holds this many throttles per boat.
+MAX_THRUSTERS = 8
 
 
 @dataclass(frozen=True)
@@ -31,6 +34,8 @@ class Propulsion:
         steerable: the rudder command also turns the thrust (water-jet nozzle, outboard).
         at_center_of_mass: apply at the centre of mass instead of ``position``.
         time_constant: s, >= 0, first-order lag of the thrust (0 = immediate).
+        max_angle: rad, the steering limit of a steerable thruster of a thruster list (its
+            angle command is clamped to it); a single thruster steers with the rudder command.
     """
 
     max_thrust: Real
@@ -39,6 +44,7 @@ class Propulsion:
     steerable: bool = False
     at_center_of_mass: bool = False
     time_constant: Real = 0.0
+    max_angle: Real = 0.0
 
 
 def lagged_throttle(model: Propulsion, actual, command, dt: float):
@@ -77,3 +83,19 @@ def thrust(model: Propulsion, throttle, nozzle_angle, center_of_mass: np.ndarray
     if model.at_center_of_mass:
         return Wrench(force, np.zeros_like(force))
     return Wrench(force, cross(np.asarray(model.position) - center_of_mass, force))
+
+
+def thrusters_wrench(models: tuple[Propulsion, ...], throttle: np.ndarray, angle: np.ndarray,
+                     center_of_mass: np.ndarray) -> Wrench:
+    """The summed wrench of a boat's (or a group's) thrusters.
+
+    Args:
+        models: the thrusters, each stacked per boat of the group.
+        throttle: (G, T) actual thrust fractions, thruster j in column j (T >= len(models)).
+        angle: (G, T) rad, the steering angle of each steerable thruster.
+        center_of_mass: (G, 3) m, body frame.
+    """
+    total = thrust(models[0], throttle[:, 0], angle[:, 0], center_of_mass)
+    for j in range(1, len(models)):
+        total = total + thrust(models[j], throttle[:, j], angle[:, j], center_of_mass)
+    return total

@@ -24,7 +24,7 @@ from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces, WaterVelocity
 from boat_dynamics.physics.mooring import Mooring
-from boat_dynamics.physics.propulsion import Propulsion
+from boat_dynamics.physics.propulsion import MAX_THRUSTERS, Propulsion
 from boat_dynamics.physics.radiation import MAX_ORDER, RadiationMemory
 from boat_dynamics.physics.rigid_body import inertia_tensor
 from boat_dynamics.physics.rudder import Rudder
@@ -44,7 +44,8 @@ class FleetState:
         orientation: (B, 4) unit quaternions (x, y, z, w), body (FLU) to world.
         velocity: (B, 3) m/s, body frame.
         angular_velocity: (B, 3) rad/s, body frame.
-        throttle: (B,) actual thrust fractions.
+        throttle: (B, T) actual thrust fractions, thruster j of a boat in column j
+            (T = :data:`~.propulsion.MAX_THRUSTERS`; columns past a boat's thrusters unused).
         control_weight: (B,) 0..1, how far each control mode has taken over.
         memory: (B, N) complex, the boats' radiation memory states
             (:mod:`boat_dynamics.physics.radiation`), or None: all calm (zero).
@@ -75,7 +76,7 @@ class FleetState:
                    np.array([s.orientation for s in states], dtype=float),
                    np.array([s.velocity for s in states], dtype=float),
                    np.array([s.angular_velocity for s in states], dtype=float),
-                   np.array([s.throttle for s in states], dtype=float),
+                   np.array([_per_thruster(s.throttle) for s in states]),
                    np.array([s.control_weight for s in states], dtype=float),
                    _stack_memory([s.memory for s in states]),
                    None if all(s.slamming is None for s in states) else np.array(
@@ -87,10 +88,20 @@ class FleetState:
         """Boat ``i``'s state (arrays are copies: the fleet state stays frozen)."""
         return BoatState(self.t, self.position[i].copy(), self.orientation[i].copy(),
                          self.velocity[i].copy(), self.angular_velocity[i].copy(),
-                         float(self.throttle[i]), float(self.control_weight[i]),
+                         self.throttle[i].copy(), float(self.control_weight[i]),
                          None if self.memory is None else self.memory[i].copy(),
                          None if self.slamming is None else self.slamming[i].copy(),
                          None if self.swept is None else self.swept[i].copy())
+
+
+def _per_thruster(values) -> np.ndarray:
+    """(T,) one value per thruster slot: a number for every thruster, or one per thruster."""
+    v = np.asarray(values, dtype=float)
+    if v.ndim == 0:
+        return np.full(MAX_THRUSTERS, float(v))
+    out = np.zeros(MAX_THRUSTERS)
+    out[:v.shape[0]] = v
+    return out
 
 
 def _stack_swept(swept: Sequence[np.ndarray | None]) -> np.ndarray | None:
@@ -118,16 +129,40 @@ def _stack_memory(memories: Sequence[np.ndarray | None]) -> np.ndarray | None:
 
 @dataclass(frozen=True)
 class FleetInputs:
-    """Validated commands of B boats: (B,) throttle fractions and (B,) rudder angles, rad."""
+    """Validated commands of B boats.
+
+    Attributes:
+        throttle: (B,) throttle fractions (every thruster of a boat), or (B, T) per thruster.
+        rudder: (B,) rudder angles, rad.
+        thruster_angle: (B, T) rad, steering angles of steerable thrusters of thruster
+            lists, or None: the rudder angles.
+    """
 
     throttle: np.ndarray
     rudder: np.ndarray
+    thruster_angle: np.ndarray | None = None
 
     @classmethod
     def stack(cls, inputs: Sequence[BoatInputs]) -> FleetInputs:
         """From one BoatInputs per boat."""
-        return cls(np.array([u.throttle for u in inputs], dtype=float),
-                   np.array([u.rudder for u in inputs], dtype=float))
+        angles = None
+        if any(u.thruster_angle is not None for u in inputs):
+            angles = np.array([_per_thruster(u.rudder if u.thruster_angle is None
+                                             else u.thruster_angle) for u in inputs])
+        if all(np.ndim(u.throttle) == 0 for u in inputs):
+            return cls(np.array([u.throttle for u in inputs], dtype=float),
+                       np.array([u.rudder for u in inputs], dtype=float), angles)
+        return cls(np.array([_per_thruster(u.throttle) for u in inputs]),
+                   np.array([u.rudder for u in inputs], dtype=float), angles)
+
+    def per_thruster(self) -> tuple[np.ndarray, np.ndarray]:
+        """(B, T) throttle commands and (B, T) steering angles, rad, of every thruster slot."""
+        b = self.rudder.shape[0]
+        throttle = (self.throttle if self.throttle.ndim == 2
+                    else np.broadcast_to(self.throttle[:, None], (b, MAX_THRUSTERS)))
+        angle = (self.thruster_angle if self.thruster_angle is not None
+                 else np.broadcast_to(self.rudder[:, None], (b, MAX_THRUSTERS)))
+        return throttle, angle
 
 
 @dataclass(frozen=True)
@@ -176,7 +211,7 @@ def _stack(items: Sequence, skip: tuple[str, ...] = ()):
 def _group_key(p: BoatParams) -> tuple:
     b = p.buoyancy
     kind = "mesh" if isinstance(b, MeshBuoyancy) else "points"
-    return (kind, _structure(b), _structure(p.propulsion), _structure(p.rudder),
+    return (kind, _structure(b), tuple(_structure(t) for t in p.thrusters), _structure(p.rudder),
             p.stokes_drift, p.min_wavelength, p.wave_precision, p.water_velocity)
 
 
@@ -193,7 +228,7 @@ class Group:
         owner: (E,) int, the boat (0..G-1) of each vertex / point.
         faces: (F, 3) int, mesh triangles indexing ``body`` (mesh group).
         face_owner: (F,) int, the boat of each triangle (mesh group).
-        propulsion: stacked thruster parameters.
+        propulsion: the thrusters, each stacked over the group's boats.
         rudder: stacked rudder parameters.
         length: (G,) m, hull lengths.
         stokes_drift: add the Stokes drift of the (filtered) sea to the water velocity.
@@ -210,7 +245,7 @@ class Group:
     owner: np.ndarray
     faces: np.ndarray | None
     face_owner: np.ndarray | None
-    propulsion: Propulsion
+    propulsion: tuple[Propulsion, ...]
     rudder: Rudder
     length: np.ndarray
     stokes_drift: bool
@@ -243,7 +278,9 @@ class Group:
             mesh = faces = face_owner = face_local = None
         owner = np.concatenate([np.full(n, i, dtype=np.intp) for i, n in enumerate(counts)])
         return cls(index, mesh, points, body, owner, faces, face_owner,
-                   _stack([p.propulsion for p in params]), _stack([p.rudder for p in params]),
+                   tuple(_stack([p.thrusters[j] for p in params])
+                         for j in range(len(first.thrusters))),
+                   _stack([p.rudder for p in params]),
                    np.array([p.hull.length for p in params]), first.stokes_drift,
                    first.min_wavelength, first.wave_precision, first.water_velocity,
                    face_local)

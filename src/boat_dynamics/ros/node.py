@@ -30,6 +30,7 @@ from boat_dynamics.physics.contact import Contact, contact, reference_points
 from boat_dynamics.physics.control import CONTROL_MODES
 from boat_dynamics.physics.diagnostics import active_remedies, fleet_reports
 from boat_dynamics.physics.model import BoatParams
+from boat_dynamics.physics.propulsion import MAX_THRUSTERS
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
@@ -84,6 +85,12 @@ class _Boat:
     rudder: float = 0.0
     last_thrust_t: float = -math.inf
     timed_out: bool = True
+    # named thrusters (``propulsion`` as a list): per thruster, the last valid throttle and
+    # steering angle, the time of its last throttle command (its own topic or cmd_thrust)
+    thrusts: list[float] = field(default_factory=list)
+    angles: list[float] = field(default_factory=list)
+    thrust_t: list[float] = field(default_factory=list)
+    thrust_out: list[bool] = field(default_factory=list)
     pubs: dict[str, TappedPublisher] = field(default_factory=dict)
     templates: dict = field(default_factory=dict)  # CdrTemplate per published topic
     subs: list = field(default_factory=list)
@@ -209,6 +216,7 @@ class DynamicsNode(Node):
                 COMMAND_QOS))
             if self._tap is not None:  # recorded here, at the simulation time they arrive
                 self._tap.topics.update({thrust_topic, rudder_topic})
+            self._subscribe_thrusters(boat)
         pos, q = reference_pose(spec.params, spec.initial)
         vel = rotation_matrix(q) @ spec.initial.velocity
         self.get_logger().info(
@@ -217,7 +225,36 @@ class DynamicsNode(Node):
             f"({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
             f"{names.boat_topic(spec.name, names.ODOM)}")
         self.get_logger().info(f"boat {label}: {_hydrodynamics(spec.params)}")
+        memory = spec.params.radiation_memory
+        if memory is not None and memory.error > _POOR_FIT:
+            self.get_logger().warning(
+                f"boat {label}: its radiation memory fits the coefficients only within "
+                f"{100 * memory.error:.0f} % (sharp resonances of the hull's B(omega), such as "
+                "the gap between catamaran hulls, cannot be fitted); its radiation may be "
+                "wrong: consider hydrodynamics.radiation: resonance, or buoyancy.pressure: "
+                "froude_krylov without coefficients")
         return boat
+
+    def _subscribe_thrusters(self, boat: _Boat) -> None:
+        """Per named thruster: ``thrusters/<name>/thrust`` and, if steerable, ``.../angle``."""
+        models = boat.spec.params.thrusters
+        n = len(boat.spec.thrusters)
+        boat.thrusts, boat.angles = [0.0] * n, [0.0] * n
+        boat.thrust_t, boat.thrust_out = [-math.inf] * n, [True] * n
+        for j, (name, model) in enumerate(zip(boat.spec.thrusters, models, strict=True)):
+            topic = names.thruster_topic(boat.spec.name, name, names.THRUSTER_THRUST)
+            boat.subs.append(self.create_subscription(
+                Float64, topic, lambda msg, b=boat, j=j, tp=topic: self._on_thruster_thrust(
+                    b, j, tp, msg), COMMAND_QOS))
+            topics = {topic}
+            if model.steerable:
+                angle_topic = names.thruster_topic(boat.spec.name, name, names.THRUSTER_ANGLE)
+                boat.subs.append(self.create_subscription(
+                    Float64, angle_topic, lambda msg, b=boat, j=j, tp=angle_topic:
+                    self._on_thruster_angle(b, j, tp, msg), COMMAND_QOS))
+                topics.add(angle_topic)
+            if self._tap is not None:
+                self._tap.topics.update(topics)
 
     def boat_positions(self) -> np.ndarray:
         """(K, 2) m, world x, y of every boat's hull reference point."""
@@ -308,6 +345,27 @@ class DynamicsNode(Node):
         boat.throttle = checked.value
         boat.last_thrust_t = self._sim_clock.t
         boat.timed_out = False
+        for j in range(len(boat.thrusts)):  # named thrusters: cmd_thrust drives them all
+            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = (checked.value,
+                                                                     self._sim_clock.t, False)
+
+    def _on_thruster_thrust(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
+        self._record_command(topic, msg)
+        checked = check_command(msg.data, -1.0, 1.0)
+        if checked.problem:
+            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        if checked.value is not None:
+            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = (checked.value,
+                                                                     self._sim_clock.t, False)
+
+    def _on_thruster_angle(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
+        self._record_command(topic, msg)
+        limit = float(boat.spec.params.thrusters[j].max_angle)
+        checked = check_command(msg.data, -limit, limit, "rad")
+        if checked.problem:
+            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        if checked.value is not None:
+            boat.angles[j] = checked.value
 
     def _on_rudder(self, boat: _Boat, topic: str, msg: Float64, max_angle: float) -> None:
         self._record_command(topic, msg)
@@ -317,6 +375,10 @@ class DynamicsNode(Node):
             self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
         if checked.value is not None:
             boat.rudder = checked.value
+            for j, model in enumerate(boat.spec.params.thrusters[:len(boat.angles)]):
+                if model.steerable:  # cmd_rudder steers the steerable named thrusters too
+                    limit = float(model.max_angle)
+                    boat.angles[j] = min(max(checked.value, -limit), limit)
 
     # ------------------------------------------------------------------ stepping
 
@@ -334,6 +396,34 @@ class DynamicsNode(Node):
                     f"{timeout:g} s; thrust set to 0")
             boat.throttle = 0.0
         return boat.throttle, boat.rudder
+
+    def _thruster_inputs(self, boat: _Boat) -> tuple[list[float], list[float]]:
+        """Named thrusters: (throttles, angles rad) for the next step, after their timeouts."""
+        t, timeout = self._sim_clock.t, self._cmd_timeout
+        for j, name in enumerate(boat.spec.thrusters):
+            if not boat.thrust_out[j] and t - boat.thrust_t[j] > timeout:
+                boat.thrust_out[j] = True
+                if boat.thrusts[j] != 0.0:
+                    topic = names.thruster_topic(boat.spec.name, name, names.THRUSTER_THRUST)
+                    self.get_logger().warning(
+                        f"{topic} (or {names.boat_topic(boat.spec.name, names.CMD_THRUST)}): "
+                        f"no command for {timeout:g} s; thrust set to 0")
+                boat.thrusts[j] = 0.0
+        return boat.thrusts, boat.angles
+
+    def _fleet_inputs(self) -> FleetInputs:
+        """Every boat's inputs for the next step (per thruster when a boat names them)."""
+        commands = np.array([self._inputs(b) for b in self.boats], dtype=float).reshape(-1, 2)
+        named = [b for b in self.boats if b.thrusts and b.spec.commands is None]
+        if not named:
+            return FleetInputs(commands[:, 0], commands[:, 1])
+        throttle = np.repeat(commands[:, :1], MAX_THRUSTERS, axis=1)
+        angle = np.repeat(commands[:, 1:2], MAX_THRUSTERS, axis=1)
+        for b in named:
+            thrusts, angles = self._thruster_inputs(b)
+            throttle[b.index, :len(thrusts)] = thrusts
+            angle[b.index, :len(angles)] = angles
+        return FleetInputs(throttle, commands[:, 1], angle)
 
     @staticmethod
     def _due(k: int, rate: float, out_rate: float) -> bool:
@@ -355,8 +445,7 @@ class DynamicsNode(Node):
         """Take one physics step for every boat, then publish what is due."""
         if self.sea is None:
             raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
-        commands = np.array([self._inputs(b) for b in self.boats], dtype=float).reshape(-1, 2)
-        inputs = FleetInputs(commands[:, 0], commands[:, 1])
+        inputs = self._fleet_inputs()
         for _ in range(self._substeps):
             done = pipeline.step(self._system, self._state, inputs, self.sea, self._dt,
                                  self._contact_if_known())
@@ -404,9 +493,7 @@ class DynamicsNode(Node):
         """wrench/<source> of every boat: the forces that acted during the last step."""
         forces = self._forces
         if forces is None:  # before the first step: the forces at the initial state
-            commands = np.array([self._inputs(b) for b in self.boats], dtype=float)
-            forces, _ = pipeline.forces(self._system, self._state,
-                                        FleetInputs(commands[:, 0], commands[:, 1]),
+            forces, _ = pipeline.forces(self._system, self._state, self._fleet_inputs(),
                                         self._current_contact())
         rows = {source: np.concatenate([getattr(forces, source).force,
                                         getattr(forces, source).torque], axis=1).tolist()
@@ -427,6 +514,10 @@ class DynamicsNode(Node):
         self._diag_pub.publish(diagnostic_array(stamp, [
             (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message, r.values)
             for boat, r in zip(self.boats, reports, strict=True)]))
+
+
+#: A radiation memory fitting its coefficients worse than this (relative) is warned about.
+_POOR_FIT = 0.1
 
 
 def _hydrodynamics(params: BoatParams) -> str:

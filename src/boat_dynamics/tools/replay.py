@@ -55,10 +55,10 @@ def command_schedule(bag: str | Path, topics: list[str] | None = None) -> list[C
     """
     available = read_bag_topics(bag)
     if topics is None:
-        topics = [t for t in available
-                  if any(names.boat_of(t, n) is not None for n in names.COMMAND_NAMES)]
+        topics = [t for t in available if names.is_command_topic(t)]
         if not topics:
-            raise BagError(f"{bag}: no command topics (*/cmd_thrust, */cmd_rudder) to replay")
+            raise BagError(f"{bag}: no command topics (*/cmd_thrust, */cmd_rudder, "
+                           "*/thrusters/*/thrust|angle) to replay")
     wanted = list(topics)
     if names.WAVE_FIELD in available:
         wanted.append(names.WAVE_FIELD)

@@ -133,3 +133,74 @@ def test_notes_velocity_decay_is_v_over_1_plus_c_dt_per_step():
 
     with pytest.raises(ScenarioError, match=r"damping\.decay"):
         ready({"boats": [{"damping": {"decay": [0, 0, 0, 0, 0, -1]}}]})
+
+
+def _twin(**extra):
+    """A 4 x 2 x 1 m box with two thrusters 0.6 m either side of the centre line, 100 N each,
+    and linear damping only (surge 2000 N s/m, yaw 3000 N m s: time constants of about 2 s),
+    in flat water."""
+    thrusters = [{"name": "left", "max_thrust": 100.0, "position": [-2.0, 0.6, -0.3]},
+                 {"name": "right", "max_thrust": 100.0, "position": [-2.0, -0.6, -0.3]}]
+    boat = ready({"boats": [{"propulsion": thrusters, "rudder": {"model": "none"},
+                             "damping": {"linear": [2000, 4000, 0, 0, 0, 3000],
+                                         "quadratic": [0] * 6}, **extra}]}).boats[0]
+    return boat
+
+
+def _run(boat, inputs, seconds=40.0, dt=0.01):
+    state = boat.initial
+    for _ in range(int(seconds / dt)):
+        state = step(boat.params, state, inputs, WaveField(), dt)
+    return state
+
+
+def test_equal_thrust_on_two_thrusters_runs_straight_at_the_damping_speed():
+    boat = _twin()
+    assert boat.thrusters == ("left", "right")
+    state = _run(boat, BoatInputs(throttle=[0.8, 0.8]), seconds=30.0)
+    # 160 N against 2000 N s/m: 0.08 m/s, on the x axis, heading unchanged
+    assert state.velocity[0] == pytest.approx(0.08, rel=1e-3)
+    assert abs(state.position[1]) < 1e-9 and abs(state.angular_velocity[2]) < 1e-12
+    # and a single throttle drives both thrusters alike
+    same = _run(boat, BoatInputs(throttle=0.8), seconds=30.0)
+    np.testing.assert_array_equal(same.position, state.position)
+
+
+def test_opposite_thrust_turns_on_the_spot_at_the_moment_balances_yaw_rate():
+    boat = _twin()
+    state = _run(boat, BoatInputs(throttle=[-1.0, 1.0]), seconds=30.0)
+    # r x F: the right thruster (y = -0.6) pushing ahead and the left one astern give
+    # N = 2 x 0.6 x 100 = 120 N m to port; against 3000 N m s: r = 0.04 rad/s
+    assert state.angular_velocity[2] == pytest.approx(0.04, rel=1e-3)
+    assert np.hypot(*state.velocity[:2]) < 0.02  # on the spot (the turn's small sway)
+    assert state.throttle[:2].tolist() == [-1.0, 1.0]
+
+
+def test_a_steerable_thruster_of_a_list_turns_with_its_own_angle():
+    thrusters = [{"name": "outboard", "max_thrust": 200.0, "position": [-2.0, 0.0, -0.3],
+                  "steerable": True, "max_angle_deg": 30.0}]
+    boat = ready({"boats": [{"propulsion": thrusters}]}).boats[0]
+    assert boat.params.thrusters[0].max_angle == pytest.approx(math.radians(30.0))
+    turned = _run(boat, BoatInputs(throttle=1.0, thruster_angle=[0.3]), seconds=5.0)
+    rudder = _run(boat, BoatInputs(throttle=1.0, rudder=0.3), seconds=5.0)
+    assert turned.angular_velocity[2] > 0.01  # + angle: bow to port
+    straight = _run(boat, BoatInputs(throttle=1.0, rudder=0.3, thruster_angle=[0.0]), 5.0)
+    assert abs(straight.angular_velocity[2]) < abs(rudder.angular_velocity[2])
+
+
+@pytest.mark.parametrize(("propulsion", "key", "fragment"), [
+    ([], "boats[0].propulsion", "1 to 8 thrusters"),
+    ([{"max_thrust": 10}], "boats[0].propulsion[0].name", "is required"),
+    ([{"name": "a"}, {"name": "a"}], "boats[0].propulsion[1].name", "unique"),
+    ([{"name": "a", "max_angle_deg": 20}], "boats[0].propulsion[0].max_angle_deg",
+     "only for a steerable thruster"),
+    ([{"name": "a", "max_thrust": -1}], "boats[0].propulsion[0].max_thrust", "(0, 1e+08] N"),
+    ([{"name": f"t{i}"} for i in range(9)], "boats[0].propulsion", "1 to 8 thrusters"),
+])
+def test_a_bad_thruster_list_is_refused_naming_the_key(propulsion, key, fragment):
+    from boat_dynamics.physics.scenario import parse_scenario
+
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"propulsion": propulsion}]})
+    assert err.value.key == key
+    assert fragment in err.value.allowed

@@ -73,6 +73,7 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     dd = mapping(d.get("damping"), dk)
     linear, quadratic, decay, ratio = _damping(dd, dk)
     rudder = rudder_block(mapping(d.get("rudder"), f"{key}.rudder"), f"{key}.rudder", hull)
+    propulsion, thruster_names = propulsion_block(d.get("propulsion"), f"{key}.propulsion", hull)
     ik = f"{key}.initial_pose"
     idd = mapping(d.get("initial_pose"), ik)
     only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
@@ -81,8 +82,7 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
         buoyancy=buoyancy,
         damping_linear=linear, damping_quadratic=quadratic, damping_decay=decay,
         added_mass=vector(d, "added_mass", key, 6, [0.0] * 6, low=0.0),
-        propulsion=propulsion_block(mapping(d.get("propulsion"), f"{key}.propulsion"),
-                                    f"{key}.propulsion", hull),
+        propulsion=propulsion,
         rudder=rudder, water_density=sim.water_density, gravity=sim.gravity,
         min_wavelength=number(d, "min_wavelength", key, 0.0, 0.0, 1e4, unit="m"),
         wave_precision=sim.wave_precision,
@@ -95,7 +95,8 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
                                  {} if loaded is None else loaded)
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle),
-                    sensors=sensors_block(d.get("sensors"), f"{key}.sensors", sim.rate_hz))
+                    sensors=sensors_block(d.get("sensors"), f"{key}.sensors", sim.rate_hz),
+                    thrusters=thruster_names)
 
 
 def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -13,7 +14,7 @@ from boat_dynamics.physics.control import ATTITUDES, CONTROL_MODES, ControlSetti
 from boat_dynamics.physics.hull import BoxHull, HullMesh
 from boat_dynamics.physics.hull_drag import HullDrag
 from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
-from boat_dynamics.physics.propulsion import Propulsion
+from boat_dynamics.physics.propulsion import MAX_THRUSTERS, Propulsion
 from boat_dynamics.physics.rudder import RUDDER_MODELS, Rudder
 from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
 from boat_dynamics.physics.scenario.specs import ScenarioError
@@ -78,8 +79,43 @@ def _slamming(raw: Any, key: str) -> Slamming:
                            unit="m/s^2"))
 
 
-def propulsion_block(pd: Mapping[str, Any], pk: str, hull: BoxHull) -> Propulsion:
-    """``propulsion``: the thruster (default at the transom, a quarter height down)."""
+def propulsion_block(raw: Any, pk: str, hull: BoxHull
+                     ) -> tuple[Propulsion | tuple[Propulsion, ...], tuple[str, ...]]:
+    """``propulsion``: one thruster (a mapping), or a list of named thrusters.
+
+    Returns:
+        The thruster (a mapping) or the tuple of thrusters (a list), and their names (empty
+        for a mapping: the boat then has no per-thruster topics).
+    """
+    if not isinstance(raw, list):
+        return _thruster(mapping(raw, pk), pk, hull), ()
+    if not 1 <= len(raw) <= MAX_THRUSTERS:
+        raise ScenarioError(pk, raw, f"must be a mapping, or a list of 1 to {MAX_THRUSTERS} "
+                                     "thrusters")
+    models, names = [], []
+    for i, item in enumerate(raw):
+        k = f"{pk}[{i}]"
+        d = mapping(item, k)
+        name = d.get("name")
+        if (not isinstance(name, str) or not name or not name[0].isalpha()
+                or not name.replace("_", "a").isalnum()):
+            raise ScenarioError(f"{k}.name", name, "is required: a ROS name (a letter, then "
+                                                   "letters, digits or underscores)")
+        if name in names:
+            raise ScenarioError(f"{k}.name", name, "must be unique among the boat's thrusters")
+        names.append(name)
+        rest = {key: v for key, v in d.items() if key not in ("name", "max_angle_deg")}
+        model = _thruster(rest, k, hull)
+        if "max_angle_deg" in d and not model.steerable:
+            raise ScenarioError(f"{k}.max_angle_deg", d["max_angle_deg"],
+                                "only for a steerable thruster (steerable: true)")
+        max_angle = number(d, "max_angle_deg", k, 35.0, 0.0, 180.0, low_open=True, unit="deg")
+        models.append(replace(model, max_angle=math.radians(max_angle)))
+    return tuple(models), tuple(names)
+
+
+def _thruster(pd: Mapping[str, Any], pk: str, hull: BoxHull) -> Propulsion:
+    """One thruster (default at the transom, a quarter height down)."""
     only(pd, pk, ("max_thrust", "position", "direction", "steerable", "at_center_of_mass",
                    "time_constant"))
     direction = vector(pd, "direction", pk, 3, [1.0, 0.0, 0.0])

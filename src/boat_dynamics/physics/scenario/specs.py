@@ -76,6 +76,8 @@ class BoatSpec:
         initial: its initial state.
         commands: scripted commands, or None to follow the command topics.
         sensors: its sensors (IMU, GNSS), in the file's order.
+        thrusters: the names of its thrusters (``propulsion`` as a list), in
+            ``params.thrusters``' order; empty for a single ``propulsion`` mapping.
     """
 
     name: str
@@ -83,6 +85,7 @@ class BoatSpec:
     initial: BoatState
     commands: CommandScript | None
     sensors: tuple[SensorSpec, ...] = ()
+    thrusters: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
