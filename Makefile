@@ -44,7 +44,7 @@ run: setup
 	$(VENV)/bin/boatsim run $(ARGS)
 
 test: setup
-	$(VENV)/bin/ruff check src tests benchmarks
+	$(VENV)/bin/ruff check src tests benchmarks examples
 	$(VPY) -m pytest $(ARGS)
 
 bench: setup
@@ -57,7 +57,7 @@ bem: setup
 	$(VPY) -m pip install --quiet --disable-pip-version-check "capytaine==3.0.0"
 
 lint: setup
-	$(VENV)/bin/ruff check src tests benchmarks
+	$(VENV)/bin/ruff check src tests benchmarks examples
 
 clean:
 	rm -rf $(VENV) build

@@ -16,13 +16,14 @@ subscribers, bags and ROS tools cannot tell.
 from __future__ import annotations
 
 import struct
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from functools import reduce
 
-from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
+from geometry_msgs.msg import PoseStamped, TransformStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
+from tf2_msgs.msg import TFMessage
 
 __all__ = [
     "CdrTemplate",
@@ -31,6 +32,7 @@ __all__ = [
     "odometry_template",
     "pose_template",
     "stamp_parts",
+    "tf_template",
     "twist_template",
     "wrench_template",
 ]
@@ -50,9 +52,17 @@ def stamp_parts(seconds: float) -> tuple[int, int]:
     return ns // 1_000_000_000, ns % 1_000_000_000
 
 
+def _step(obj: object, name: str) -> object:
+    """``obj.name``, or ``obj.name[i]`` for a ``name[i]`` path segment."""
+    if name.endswith("]"):
+        name, index = name[:-1].split("[")
+        return getattr(obj, name)[int(index)]
+    return getattr(obj, name)
+
+
 def _set(msg: object, path: str, value: object) -> None:
     *parents, leaf = path.split(".")
-    setattr(reduce(getattr, parents, msg), leaf, value)
+    setattr(reduce(_step, parents, msg), leaf, value)
 
 
 class CdrTemplate:
@@ -63,6 +73,9 @@ class CdrTemplate:
         fields: dotted field paths in the order :meth:`pack` takes their values, each with its
             kind: ``("pose.pose.position.x", "float64")``, ``("header.stamp.sec", "int32")``.
         strings: dotted paths of string fields and their fixed values (frame ids).
+        factory: makes the empty message (default ``msg_class()``): one whose sequences
+            already have their fixed lengths, so ``transforms[2].transform.translation.x``
+            is a field with a place.
 
     Raises:
         TemplateError: a field is not where a fixed-layout message would have it (for instance
@@ -70,9 +83,10 @@ class CdrTemplate:
     """
 
     def __init__(self, msg_class: type, fields: Sequence[tuple[str, str]],
-                 strings: dict[str, str] | None = None) -> None:
+                 strings: dict[str, str] | None = None,
+                 factory: Callable[[], object] | None = None) -> None:
         def prototype():
-            msg = msg_class()
+            msg = msg_class() if factory is None else factory()
             for path, value in (strings or {}).items():
                 _set(msg, path, value)
             return msg
@@ -163,3 +177,19 @@ def wrench_template(frame: str) -> CdrTemplate:
 def clock_template() -> CdrTemplate:
     """rosgraph_msgs/Clock; pack(sec, nanosec)."""
     return CdrTemplate(Clock, (("clock.sec", "int32"), ("clock.nanosec", "uint32")))
+
+
+def tf_template(parent: str, child: str) -> CdrTemplate:
+    """tf2_msgs/TFMessage of one transform, ``parent`` -> ``child``.
+
+    pack(sec, nanosec, tx, ty, tz, qx, qy, qz, qw). One message per boat: a template of a
+    fleet's transforms in one message would locate 9 fields per boat by serializing the whole
+    message each time (1 s for 100 boats, measured), per-boat ones cost 9 small ones each.
+    """
+    prefix = "transforms[0]"
+    return CdrTemplate(TFMessage, (
+        (f"{prefix}.header.stamp.sec", "int32"), (f"{prefix}.header.stamp.nanosec", "uint32"),
+        *_doubles(f"{prefix}.transform.translation", "xyz"),
+        *_doubles(f"{prefix}.transform.rotation", "xyzw")),
+        {f"{prefix}.header.frame_id": parent, f"{prefix}.child_frame_id": child},
+        factory=lambda: TFMessage(transforms=[TransformStamped()]))

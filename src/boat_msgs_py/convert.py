@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from boat_msgs.msg import Environment as EnvironmentMsg
 from boat_msgs.msg import WaveComponent as WaveComponentMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
 from builtin_interfaces.msg import Time
@@ -23,15 +24,19 @@ from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
 from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 
-from boat_dynamics.physics.sensors import GnssReading, ImuReading
+from boat_dynamics.physics.sensors import GnssReading, ImuReading, OdometryReading
 from boat_msgs_py.names import WORLD_FRAME
+from ocean_sim.physics.environment import GUST_MODELS, Environment, Wind
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
 __all__ = [
     "diagnostic_array",
+    "environment_from_msg",
+    "environment_to_msg",
     "gnss_velocity",
     "imu",
     "nav_sat_fix",
+    "noisy_odometry",
     "odometry",
     "pose_stamped",
     "seconds_to_time",
@@ -194,4 +199,41 @@ def gnss_velocity(stamp: Time, frame: str, reading: GnssReading) -> TwistWithCov
     cov[:3, :3] = reading.velocity_covariance
     cov[3, 3] = cov[4, 4] = cov[5, 5] = -1.0
     msg.twist.covariance = [float(x) for x in cov.reshape(36)]
+    return msg
+
+
+def environment_to_msg(environment: Environment, stamp: Time) -> EnvironmentMsg:
+    """boat_msgs/Environment of the current and the wind (the gusts by model, count, seed)."""
+    wind = environment.wind
+    return EnvironmentMsg(header=_header(stamp, WORLD_FRAME),
+                          current_speed=float(environment.current_speed),
+                          current_direction=float(environment.current_direction),
+                          wind_speed=float(wind.speed), wind_direction=float(wind.direction),
+                          gusts=wind.gusts, gust_components=int(wind.components),
+                          seed=int(wind.seed))
+
+
+def environment_from_msg(msg: EnvironmentMsg) -> Environment:
+    """The core's Environment (the gust components drawn again from the message's seed).
+
+    Raises:
+        ValueError: a negative or non-finite speed, or an unknown gust model.
+    """
+    values = (msg.current_speed, msg.current_direction, msg.wind_speed, msg.wind_direction)
+    if not all(np.isfinite(values)) or msg.current_speed < 0.0 or msg.wind_speed < 0.0:
+        raise ValueError(f"speeds must be finite and >= 0, directions finite: {values}")
+    if msg.gusts not in GUST_MODELS or msg.gust_components < 1:
+        raise ValueError(f"gusts {msg.gusts!r} with {msg.gust_components} components: one of "
+                         f"{GUST_MODELS} with at least 1")
+    return Environment(msg.current_speed, msg.current_direction,
+                       Wind.make(msg.wind_speed, msg.wind_direction, msg.gusts,
+                                 msg.gust_components, msg.seed))
+
+
+def noisy_odometry(stamp: Time, child: str, reading: OdometryReading) -> Odometry:
+    """nav_msgs/Odometry of a noisy odometry reading, its covariances filled."""
+    msg = odometry(stamp, child, reading.position, reading.orientation, reading.velocity,
+                   reading.angular_velocity)
+    msg.pose.covariance = [float(x) for x in reading.pose_covariance.reshape(36)]
+    msg.twist.covariance = [float(x) for x in reading.twist_covariance.reshape(36)]
     return msg

@@ -11,6 +11,7 @@ __all__ = [
     "CMD_THRUST",
     "COMMAND_NAMES",
     "DIAGNOSTICS",
+    "ENVIRONMENT",
     "LOCKSTEP",
     "ODOM",
     "PARAMETER_EVENTS",
@@ -50,9 +51,11 @@ POSE = "pose"
 TWIST = "twist"
 #: wrench/<source> topics published by the dynamics node (``total`` includes gravity).
 WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "diffraction", "slamming",
-                  "total")
+                  "wind", "total")
 
 WAVE_FIELD = "/ocean/wave_field"
+#: boat_msgs/Environment: the current and the wind (latched, republished on change).
+ENVIRONMENT = "/ocean/environment"
 SAMPLE_SURFACE = "/ocean/sample_surface"
 #: sensor_msgs/PointCloud2 of the surface around the boats, for viewers (RViz, Foxglove).
 SURFACE_CLOUD = "/ocean/surface"

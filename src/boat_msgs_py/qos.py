@@ -12,6 +12,7 @@ __all__ = [
     "CLOCK_QOS",
     "COMMAND_QOS",
     "DIAGNOSTICS_QOS",
+    "ENVIRONMENT_QOS",
     "RECORD_QOS",
     "SENSOR_QOS",
     "STATE_QOS",
@@ -44,6 +45,8 @@ WAVE_FIELD_QOS = QoSProfile(
     reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL,
 )
 
+#: /ocean/environment: as /ocean/wave_field (a late joiner gets the current and wind).
+ENVIRONMENT_QOS = WAVE_FIELD_QOS
 #: /clock: reliable, last 1 (serves rclpy's best-effort time source subscription too).
 CLOCK_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_LAST, depth=1,

@@ -19,10 +19,17 @@ from boat_msgs_py.cdr import (
     odometry_template,
     pose_template,
     stamp_parts,
+    tf_template,
     twist_template,
     wrench_template,
 )
-from boat_msgs_py.convert import odometry, pose_stamped, seconds_to_time, twist_stamped
+from boat_msgs_py.convert import (
+    odometry,
+    pose_stamped,
+    seconds_to_time,
+    tf_message,
+    twist_stamped,
+)
 from boat_msgs_py.convert import wrench_stamped as wrench_msg
 
 
@@ -63,6 +70,14 @@ def test_wrench_and_clock_equal_rclpy_serialization(frame, t, v):
     back = deserialize_message(data, WrenchStamped)
     assert [back.wrench.force.x, back.wrench.torque.z] == [v[0], v[5]]
     same(clock_template().pack(sec, nanosec), Clock(clock=seconds_to_time(t)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(frames, frames, seconds, st.lists(finite, min_size=7, max_size=7))
+def test_tf_equals_rclpy_serialization(parent, child, t, v):
+    sec, nanosec = stamp_parts(t)
+    msg = tf_message(seconds_to_time(t), [(parent, child, v[:3], v[3:])])
+    same(tf_template(parent, child).pack(sec, nanosec, *v), msg)
 
 
 def test_stamp_parts_rounds_to_the_nanosecond():

@@ -22,9 +22,13 @@ GNSS = {"type": "gnss", "name": "gnss", "rate_hz": 5, "position": [-1.0, 0.0, 1.
         "noise": {"horizontal_sigma": 1.0, "vertical_sigma": 2.0, "bias_sigma": 0.0}}
 
 
+ODOMETRY = {"type": "odometry", "name": "odom_noisy", "rate_hz": 10,
+            "noise": {"position_sigma": 0.3}}
+
+
 def _scenario(tmp_path, seed=3, publish_tf=True, waves=False, imu=IMU):
     data = {"simulation": {"seed": seed, "datum": DATUM, "publish_tf": publish_tf},
-            "boats": [{"name": "alpha", "sensors": [imu, GNSS]}]}
+            "boats": [{"name": "alpha", "sensors": [imu, GNSS, ODOMETRY]}]}
     if waves:
         data["ocean"] = {"components": [{"amplitude": 0.2, "wavelength": 20.0,
                                          "direction_deg": 30.0, "steepness": 0.5}]}
@@ -93,6 +97,13 @@ def test_tf_is_the_odometry_and_tf_static_mounts_every_sensor(boatsim, tmp_path)
         np.testing.assert_allclose(np.diag(np.reshape(fix.position_covariance, (3, 3))),
                                    [1.0, 1.0, 4.0])
     assert len(errors) == 20  # 5 Hz from the first step: t = 0.2 .. 4.0 s
+    # the noisy odometry: odom's pose within its noise, the covariance from its sigma
+    noisy = msgs["/alpha/odom_noisy"]
+    assert len(noisy) == 40 and noisy[0][1].child_frame_id == "alpha/base_link"
+    offsets = [_vec(m.pose.pose.position) - _vec(odom[stamp].pose.pose.position)
+               for stamp, m in noisy]
+    assert 0.0 < np.abs(offsets).max() < 4.5 * 0.3
+    assert noisy[-1][1].pose.covariance[0] == pytest.approx(0.09)
     assert np.all(np.abs(errors) < 4.5 * np.array([1.0, 1.0, 2.0]))
     assert np.abs(np.array(errors)[:, :2]).max() > 0.1  # noise is there
 

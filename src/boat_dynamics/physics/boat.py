@@ -20,6 +20,7 @@ from boat_dynamics.physics.model import (
     reference_pose,
 )
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
+from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import WaveField
 
 __all__ = [
@@ -59,7 +60,8 @@ def afloat(params: BoatParams, state: BoatState, sea: WaveField) -> BoatState:
 
 
 def evaluate_forces(
-    params: BoatParams, state: BoatState, inputs: BoatInputs, sea: WaveField
+    params: BoatParams, state: BoatState, inputs: BoatInputs, sea: WaveField,
+    environment: Environment | None = None,
 ) -> Forces:
     """Evaluate every force model at ``state`` and sum them.
 
@@ -68,18 +70,20 @@ def evaluate_forces(
         state: its state.
         inputs: validated actuator commands.
         sea: the wave field.
+        environment: the current and the wind, or None.
 
     Returns:
         Each source's wrench and the total, body frame, about the centre of mass.
     """
     system, fleet_state = System.build([params]), FleetState.stack([state])
     forces, _ = pipeline.forces(system, fleet_state, FleetInputs.stack([inputs]),
-                                contact(system, fleet_state, sea))
+                                contact(system, fleet_state, sea), environment)
     return forces.boat(0)
 
 
 def step(
-    params: BoatParams, state: BoatState, inputs: BoatInputs, sea: WaveField, dt: float
+    params: BoatParams, state: BoatState, inputs: BoatInputs, sea: WaveField, dt: float,
+    environment: Environment | None = None,
 ) -> BoatState:
     """Advance one boat by ``dt`` seconds (semi-implicit Euler).
 
@@ -89,12 +93,14 @@ def step(
         inputs: validated actuator commands, held over the step.
         sea: the wave field.
         dt: s, > 0.
+        environment: the current and the wind, or None.
 
     Returns:
         The state at t + dt.
     """
     return pipeline.step(System.build([params]), FleetState.stack([state]),
-                         FleetInputs.stack([inputs]), sea, dt).state.boat(0)
+                         FleetInputs.stack([inputs]), sea, dt,
+                         environment=environment).state.boat(0)
 
 
 def step_many(params: Sequence[BoatParams], states: Sequence[BoatState],

@@ -23,13 +23,16 @@ from boat_dynamics.physics.radiation import memory_wrench
 from boat_dynamics.physics.rudder import rudder_wrench
 from boat_dynamics.physics.slamming import kerner_wrench, slamming_wrench
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
+from boat_dynamics.physics.wind import wind_wrench
 from boat_dynamics.physics.wrench import Wrench
+from ocean_sim.physics.constants import AIR_DENSITY
+from ocean_sim.physics.environment import Environment
 
 __all__ = ["forces", "previous_swept"]
 
 
-def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact
-           ) -> tuple[FleetForces, np.ndarray]:
+def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact,
+           environment: Environment | None = None) -> tuple[FleetForces, np.ndarray]:
     """Every force model's wrench on every boat at ``state``, and their sum.
 
     Args:
@@ -37,6 +40,8 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         state: their state.
         inputs: their validated commands.
         contact: the surface contact at ``state`` (:func:`.contact.contact`).
+        environment: the current (it moves the water the damping, drag and rudder see) and
+            the wind (:mod:`.wind`), or None: neither.
 
     Returns:
         The forces (body frames, about the centres of mass), and (B, 3) the surface normal
@@ -45,6 +50,8 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     b = system.count
     rot = contact.rotation
     water_velocity, normals_ref = _at_reference(system, contact)
+    if environment is not None and environment.current_speed > 0.0:
+        water_velocity = water_velocity + environment.current
     relative = state.velocity - np.einsum("bji,bj->bi", rot, water_velocity)  # body frame
     buoy, drag = (np.zeros((b, 3)), np.zeros((b, 3))), (np.zeros((b, 3)), np.zeros((b, 3)))
     for c in contact.groups:
@@ -86,8 +93,16 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         tether = mooring_wrench(m.stiffness, m.damping, m.anchor, state.position, rot,
                                 state.velocity, state.angular_velocity)
         total = total + tether
-    return (FleetForces(buoy, damp, drag, push, steer, scattered, slam, tether, weight, total),
-            normals_ref)
+    blow = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
+    if (environment is not None and environment.wind.speed > 0.0
+            and system.windage is not None):  # in calm air no load (no air drag either)
+        wind_body = np.einsum("bji,j->bi", rot, environment.wind.velocity(state.t))
+        blow = wind_wrench(system.windage, system.windage_centre, wind_body, state.velocity,
+                           com, AIR_DENSITY)
+        total = total + blow
+    return (FleetForces(buoyancy=buoy, damping=damp, drag=drag, thrust=push, rudder=steer,
+                        diffraction=scattered, slamming=slam, mooring=tether, wind=blow,
+                        gravity=weight, total=total), normals_ref)
 
 
 def _excitation(system: System, state: FleetState, contact: Contact

@@ -21,6 +21,7 @@ from boat_dynamics.physics.propulsion import Propulsion
 from boat_dynamics.physics.radiation import RadiationMemory
 from boat_dynamics.physics.rigid_body import mass_matrix, quat_from_euler, rotation_matrix
 from boat_dynamics.physics.rudder import Rudder
+from boat_dynamics.physics.wind import Windage
 from boat_dynamics.physics.wrench import Wrench
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.waves import Precision
@@ -79,6 +80,8 @@ class Derivation:
             its fitted memory (the Cummins equation).
         estimate: the key of a hull that asked for its coefficient file (``coefficients:
             auto``) and has none: ``hydro`` becomes :func:`.hydro.estimate` at its equilibrium.
+        windage: the boat's windage with NaN where it is to be derived from the hull above
+            its equilibrium waterline (:func:`.wind.windage_of_hull`), or None: none.
     """
 
     critical_ratio: np.ndarray | None = None
@@ -87,6 +90,7 @@ class Derivation:
     radiation_damping: bool = False
     memory: bool = False
     estimate: str | None = None
+    windage: Windage | None = None
 
 
 @dataclass(frozen=True)
@@ -135,6 +139,7 @@ class BoatParams:
             of :mod:`.seakeeping`), or None.
         water_velocity: where the water velocity of the damping is taken
             (:data:`WaterVelocity`).
+        windage: what the wind acts on (:mod:`.wind`), or None: no wind load.
     """
 
     hull: BoxHull
@@ -163,6 +168,7 @@ class BoatParams:
     radiation_memory: RadiationMemory | None = None
     mooring: Mooring | None = None
     water_velocity: WaterVelocity = "reference_point"
+    windage: Windage | None = None
 
     @property
     def thrusters(self) -> tuple[Propulsion, ...]:
@@ -226,7 +232,8 @@ class Forces:
 
     ``total`` is the net wrench (the sources plus gravity) that the integrator uses;
     ``diffraction`` is zero for a boat without potential-flow coefficients, ``slamming`` for a
-    hull without a slamming model or not slamming, ``mooring`` for a boat not moored.
+    hull without a slamming model or not slamming, ``mooring`` for a boat not moored, ``wind``
+    in calm air or for a boat without windage.
     """
 
     buoyancy: Wrench
@@ -237,6 +244,7 @@ class Forces:
     diffraction: Wrench
     slamming: Wrench
     mooring: Wrench
+    wind: Wrench
     gravity: Wrench
     total: Wrench
 

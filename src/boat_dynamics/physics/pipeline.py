@@ -31,6 +31,7 @@ from boat_dynamics.physics.radiation import advance
 from boat_dynamics.physics.rigid_body import integrate, integrate_coupled, rotation_matrix
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.tuning import derive
+from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import WaveField, slope_orbit_velocity
 
 if TYPE_CHECKING:
@@ -174,7 +175,7 @@ def afloat(system: System, state: FleetState, sea: WaveField) -> FleetState:
 
 
 def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField, dt: float,
-         contact: Contact | None = None) -> Step:
+         contact: Contact | None = None, environment: Environment | None = None) -> Step:
     """Advance every boat by ``dt`` s (semi-implicit Euler), with one surface query.
 
     Args:
@@ -185,6 +186,8 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
         dt: s, > 0.
         contact: the surface contact at ``state`` if already known (the /diagnostics of
             ``state`` computed it); None = computed here.
+        environment: the current and the wind (:mod:`ocean_sim.physics.environment`), or
+            None: neither.
 
     Returns:
         The state at t + dt, the forces that acted and the contact they came from.
@@ -204,7 +207,7 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     elif not contact.belongs_to(system, state, sea):
         raise ValueError("contact: computed for another system, state or sea than the one "
                          "stepped")
-    acting, normals = forces(system, state, inputs, contact)
+    acting, normals = forces(system, state, inputs, contact, environment)
     torque = acting.total.torque
     if system.special:  # control modes: rare, arcade
         torque = pd_torques(system, state, torque, normals, dt)

@@ -323,6 +323,9 @@ class System:
             one.
         mooring: the boats' moorings stacked ((B, 3) anchor, stiffness, damping; zero for a
             boat not moored), or None when no boat is moored.
+        windage: (B, 6) A_F, A_L, L_oa, c_x, c_y, c_n (:mod:`.wind`; zero for a boat without
+            windage), or None when no boat has any.
+        windage_centre: (B, 3) m, body frames, where the wind's force acts, or None.
     """
 
     params: tuple[BoatParams, ...]
@@ -348,6 +351,8 @@ class System:
     inertia_tensor: np.ndarray | None = None
     memory: RadiationMemory | None = None
     mooring: Mooring | None = None
+    windage: np.ndarray | None = None
+    windage_centre: np.ndarray | None = None
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -381,7 +386,22 @@ class System:
             diffracting=tuple(i for i, p in enumerate(ps) if p.hydro is not None),
             **_coupling(ps),
             mooring=_moorings(ps),
+            **_windages(ps),
         )
+
+
+def _windages(ps: Sequence[BoatParams]) -> dict:
+    """The :class:`System` fields of the boats' windage (None when no boat has any)."""
+    if all(p.windage is None for p in ps):
+        return {}
+    rows = np.zeros((len(ps), 6))
+    centres = np.zeros((len(ps), 3))
+    for i, p in enumerate(ps):
+        w = p.windage
+        if w is not None:
+            rows[i] = [w.frontal_area, w.lateral_area, w.length, *w.coefficients]
+            centres[i] = w.centre
+    return {"windage": rows, "windage_centre": centres}
 
 
 def _moorings(ps: Sequence[BoatParams]) -> Mooring | None:

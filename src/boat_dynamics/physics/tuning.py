@@ -15,12 +15,14 @@ import numpy as np
 
 from boat_dynamics.physics.contact import contact
 from boat_dynamics.physics.forces import forces
+from boat_dynamics.physics.hull import box_mesh
 from boat_dynamics.physics.hydro import HydroCoefficients, estimate
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.radiation import fit_memory
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
+from boat_dynamics.physics.wind import Windage, windage_of_hull
 from ocean_sim.physics.waves import WaveField
 
 __all__ = [
@@ -157,8 +159,9 @@ def derive(params: BoatParams) -> BoatParams:
     potential-flow coefficients, the 6 x 6 infinite-frequency added mass and the fitted
     radiation memory of the Cummins equation (:func:`.radiation.fit_memory`), or the added
     mass and radiation damping of :func:`potential_flow_at_resonance`; then
-    ``damping_linear`` += :func:`critical_damping` of ``critical_ratio`` and, with
-    ``quadratic``, ``damping_quadratic`` = :func:`default_drag`. Parameters with nothing to
+    ``damping_linear`` += :func:`critical_damping` of ``critical_ratio``, with
+    ``quadratic``, ``damping_quadratic`` = :func:`default_drag`, and the windage the wind
+    acts on (:func:`.wind.windage_of_hull` where the scenario gave none). Parameters with nothing to
     derive (``derive`` None) are returned as they are.
 
     Raises:
@@ -185,8 +188,23 @@ def derive(params: BoatParams) -> BoatParams:
         linear = linear + critical_damping(params, wanted.critical_ratio, z_eq)
     if wanted.quadratic:
         quadratic = default_drag(params, z_eq)
+    if wanted.windage is not None:
+        params = replace(params, windage=_windage(params, wanted.windage, z_eq))
     return replace(params, damping_linear=linear, damping_quadratic=quadratic,
                    control=replace(params.control, height_offset=z_eq), derive=None)
+
+
+def _windage(params: BoatParams, given: Windage, z_eq: float) -> Windage:
+    """``given`` with its NaN fields from the hull above its equilibrium waterline."""
+    mesh = (params.buoyancy.mesh if isinstance(params.buoyancy, MeshBuoyancy)
+            else box_mesh(params.hull))
+    hull = windage_of_hull(mesh, z_eq, params.hull.length)
+    return Windage(
+        frontal_area=hull.frontal_area if np.isnan(given.frontal_area) else given.frontal_area,
+        lateral_area=hull.lateral_area if np.isnan(given.lateral_area) else given.lateral_area,
+        length=params.hull.length,
+        centre=np.where(np.isnan(given.centre), hull.centre, given.centre),
+        coefficients=np.asarray(given.coefficients, dtype=float))
 
 
 def potential_flow_at_resonance(params: BoatParams, coefficients: HydroCoefficients,

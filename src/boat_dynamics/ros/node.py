@@ -12,8 +12,8 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from boat_msgs.msg import Environment as EnvironmentMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
-from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
@@ -45,9 +45,22 @@ from boat_msgs_py.cdr import (
     twist_template,
     wrench_template,
 )
-from boat_msgs_py.convert import diagnostic_array, seconds_to_time, wave_field_from_msg
-from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, DIAGNOSTICS_QOS, STATE_QOS, WAVE_FIELD_QOS
+from boat_msgs_py.convert import (
+    diagnostic_array,
+    environment_from_msg,
+    seconds_to_time,
+    wave_field_from_msg,
+)
+from boat_msgs_py.qos import (
+    CLOCK_QOS,
+    COMMAND_QOS,
+    DIAGNOSTICS_QOS,
+    ENVIRONMENT_QOS,
+    STATE_QOS,
+    WAVE_FIELD_QOS,
+)
 from boat_msgs_py.tap import Tap, TappedPublisher
+from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
 
 __all__ = ["DynamicsNode", "SimClock"]
@@ -147,6 +160,10 @@ class DynamicsNode(Node):
                                          DIAGNOSTICS_QOS, tap)
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
+        # the scenario's current and wind from the first step; the ocean's changes as they come
+        self.environment: Environment = scenario.environment
+        self._environment_sub = self.create_subscription(
+            EnvironmentMsg, names.ENVIRONMENT, self._on_environment, ENVIRONMENT_QOS)
         if any(spec.params.derive is not None for spec in scenario.boats):
             raise ValueError("scenario: its boats are not initialized (derive them and set "
                              "them afloat with boat_dynamics.physics.pipeline.init_scenario)")
@@ -237,8 +254,8 @@ class DynamicsNode(Node):
 
     def _subscribe_thrusters(self, boat: _Boat) -> None:
         """Per named thruster: ``thrusters/<name>/thrust`` and, if steerable, ``.../angle``."""
-        models = boat.spec.params.thrusters
-        n = len(boat.spec.thrusters)
+        n = len(boat.spec.thrusters)  # 0: a single unnamed thruster, no topics of its own
+        models = boat.spec.params.thrusters[:n]
         boat.thrusts, boat.angles = [0.0] * n, [0.0] * n
         boat.thrust_t, boat.thrust_out = [-math.inf] * n, [True] * n
         for j, (name, model) in enumerate(zip(boat.spec.thrusters, models, strict=True)):
@@ -313,6 +330,15 @@ class DynamicsNode(Node):
         self.get_logger().info(
             f"{'received' if first else 'updated'} sea state: {len(sea.components)} components")
 
+    def _on_environment(self, msg: EnvironmentMsg) -> None:
+        try:
+            environment = environment_from_msg(msg)
+        except ValueError as exc:
+            self.get_logger().error(f"ignoring invalid {names.ENVIRONMENT}: {exc}; keeping the "
+                                    "previous current and wind")
+            return
+        self.environment = environment
+
     def _on_lockstep(self, msg: Float64MultiArray) -> None:
         if len(msg.data) >= 2:
             self.granted_until = max(self.granted_until, float(msg.data[0]))
@@ -334,51 +360,46 @@ class DynamicsNode(Node):
         if self._tap is not None:
             self._tap.sink(topic, "std_msgs/msg/Float64", serialize_message(msg))
 
-    def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
+    def _checked(self, topic: str, msg: Float64, limit: float, unit: str = "") -> float | None:
+        """Record a command and check it against [-limit, limit]: the value to use, or None.
+
+        A value out of range is clamped and a non-finite one ignored, with a warning.
+        """
         self._record_command(topic, msg)
-        raw = msg.data
-        checked = check_command(raw, -1.0, 1.0)
+        checked = check_command(msg.data, -limit, limit, unit)
         if checked.problem:
             self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
-        if checked.value is None:
+        return checked.value
+
+    def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
+        value = self._checked(topic, msg, 1.0)
+        if value is None:
             return
-        boat.throttle = checked.value
+        boat.throttle = value
         boat.last_thrust_t = self._sim_clock.t
         boat.timed_out = False
         for j in range(len(boat.thrusts)):  # named thrusters: cmd_thrust drives them all
-            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = (checked.value,
-                                                                     self._sim_clock.t, False)
+            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = value, self._sim_clock.t, False
 
     def _on_thruster_thrust(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
-        self._record_command(topic, msg)
-        checked = check_command(msg.data, -1.0, 1.0)
-        if checked.problem:
-            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
-        if checked.value is not None:
-            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = (checked.value,
-                                                                     self._sim_clock.t, False)
+        value = self._checked(topic, msg, 1.0)
+        if value is not None:
+            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = value, self._sim_clock.t, False
 
     def _on_thruster_angle(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
-        self._record_command(topic, msg)
-        limit = float(boat.spec.params.thrusters[j].max_angle)
-        checked = check_command(msg.data, -limit, limit, "rad")
-        if checked.problem:
-            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
-        if checked.value is not None:
-            boat.angles[j] = checked.value
+        value = self._checked(topic, msg, float(boat.spec.params.thrusters[j].max_angle), "rad")
+        if value is not None:
+            boat.angles[j] = value
 
     def _on_rudder(self, boat: _Boat, topic: str, msg: Float64, max_angle: float) -> None:
-        self._record_command(topic, msg)
-        raw = msg.data
-        checked = check_command(raw, -max_angle, max_angle, "rad")
-        if checked.problem:
-            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
-        if checked.value is not None:
-            boat.rudder = checked.value
-            for j, model in enumerate(boat.spec.params.thrusters[:len(boat.angles)]):
-                if model.steerable:  # cmd_rudder steers the steerable named thrusters too
-                    limit = float(model.max_angle)
-                    boat.angles[j] = min(max(checked.value, -limit), limit)
+        value = self._checked(topic, msg, max_angle, "rad")
+        if value is None:
+            return
+        boat.rudder = value
+        for j, model in enumerate(boat.spec.params.thrusters[:len(boat.angles)]):
+            if model.steerable:  # cmd_rudder steers the steerable named thrusters too
+                limit = float(model.max_angle)
+                boat.angles[j] = min(max(value, -limit), limit)
 
     # ------------------------------------------------------------------ stepping
 
@@ -448,7 +469,7 @@ class DynamicsNode(Node):
         inputs = self._fleet_inputs()
         for _ in range(self._substeps):
             done = pipeline.step(self._system, self._state, inputs, self.sea, self._dt,
-                                 self._contact_if_known())
+                                 self._contact_if_known(), self.environment)
             self._before = self._state
             self._state, self._forces, self._contact = done.state, done.forces, None
         self._sim_clock.steps += 1
@@ -487,14 +508,14 @@ class DynamicsNode(Node):
             boat.pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
             boat.pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
         if self._publish_tf:
-            self._transforms.publish(Time(sec=sec, nanosec=nanosec), pos, quat)
+            self._transforms.publish(sec, nanosec, pos, quat)
 
     def _publish_wrenches(self, sec: int, nanosec: int) -> None:
         """wrench/<source> of every boat: the forces that acted during the last step."""
         forces = self._forces
         if forces is None:  # before the first step: the forces at the initial state
             forces, _ = pipeline.forces(self._system, self._state, self._fleet_inputs(),
-                                        self._current_contact())
+                                        self._current_contact(), self.environment)
         rows = {source: np.concatenate([getattr(forces, source).force,
                                         getattr(forces, source).torque], axis=1).tolist()
                 for source in names.WRENCH_SOURCES}

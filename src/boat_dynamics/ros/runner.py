@@ -213,7 +213,8 @@ class _Loop:
         if options.role in ("all", "ocean"):
             self.ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
                                    surface_centers=(self.dynamics.boat_positions
-                                                    if self.dynamics else None))
+                                                    if self.dynamics else None),
+                                   environment=scenario.environment)
             self.nodes.append(self.ocean)
         self.logger = self.nodes[0].get_logger()
         if bag is not None:

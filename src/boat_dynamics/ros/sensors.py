@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from geometry_msgs.msg import TwistWithCovarianceStamped
+from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from sensor_msgs.msg import Imu, NavSatFix
 from tf2_msgs.msg import TFMessage
@@ -21,17 +22,20 @@ from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
 from boat_dynamics.physics.sensors import (
     GnssSpec,
     ImuSpec,
+    OdometrySpec,
     SensorSpec,
     gnss_start,
     imu_start,
     measure_gnss,
     measure_imu,
+    measure_odometry,
     stream_key,
     true_motion,
 )
 from boat_dynamics.physics.system import FleetState
 from boat_msgs_py import names
-from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, tf_message
+from boat_msgs_py.cdr import tf_template
+from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, noisy_odometry, tf_message
 from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 
@@ -61,9 +65,11 @@ class TransformPublisher:
 
     def __init__(self, node: Node, boats: list[BoatSpec], tap: Tap | None) -> None:
         self._pub = TappedPublisher(node, TFMessage, names.TF, TF_QOS, tap)
-        self._children = [names.child_frame(b.name) for b in boats]
+        self._templates = [tf_template(names.WORLD_FRAME, names.child_frame(b.name))
+                           for b in boats]
         self._static = [(names.child_frame(b.name), names.sensor_frame(b.name, s.name),
-                         s.position, _IDENTITY) for b in boats for s in b.sensors]
+                         s.position, _IDENTITY) for b in boats for s in b.sensors
+                        if not isinstance(s, OdometrySpec)]
         self._static_pub = (TappedPublisher(node, TFMessage, names.TF_STATIC, TF_STATIC_QOS, tap)
                             if self._static else None)
 
@@ -72,11 +78,10 @@ class TransformPublisher:
         if self._static_pub is not None:
             self._static_pub.publish(tf_message(stamp, self._static))
 
-    def publish(self, stamp, positions: np.ndarray, orientations: np.ndarray) -> None:
-        """``/tf`` of every boat: (K, 3) m reference points, (K, 4) orientations."""
-        self._pub.publish(tf_message(stamp, [
-            (names.WORLD_FRAME, child, p, q)
-            for child, p, q in zip(self._children, positions, orientations, strict=True)]))
+    def publish(self, sec: int, nanosec: int, positions: list, orientations: list) -> None:
+        """``/tf``, one message per boat: K (3,) m reference points, K (4,) orientations."""
+        for template, p, q in zip(self._templates, positions, orientations, strict=True):
+            self._pub.publish(template.pack(sec, nanosec, *p, *q))
 
 
 class SensorPublisher:
@@ -96,20 +101,10 @@ class SensorPublisher:
         for index, boat in enumerate(boats):
             for spec in boat.sensors:
                 key = stream_key(sim.seed, boat.name, spec.name)
-                if isinstance(spec, ImuSpec):
-                    pubs = [TappedPublisher(node, Imu, names.imu_topic(boat.name, spec.name),
-                                            SENSOR_QOS, tap)]
-                    state = imu_start(spec, key)
-                else:
-                    pubs = [TappedPublisher(node, NavSatFix,
-                                            names.gnss_fix_topic(boat.name, spec.name),
-                                            SENSOR_QOS, tap),
-                            TappedPublisher(node, TwistWithCovarianceStamped,
-                                            names.gnss_vel_topic(boat.name, spec.name),
-                                            SENSOR_QOS, tap)]
-                    state = gnss_start(spec, key)
-                self._sensors.append((index, _Sensor(boat, spec, key, state, pubs,
-                                                     names.sensor_frame(boat.name, spec.name))))
+                pubs, state = _publishers(node, boat.name, spec, key, tap)
+                frame = (names.child_frame(boat.name) if isinstance(spec, OdometrySpec)
+                         else names.sensor_frame(boat.name, spec.name))
+                self._sensors.append((index, _Sensor(boat, spec, key, state, pubs, frame)))
 
     def __len__(self) -> int:
         return len(self._sensors)
@@ -131,8 +126,10 @@ class SensorPublisher:
             if isinstance(sensor.spec, ImuSpec):
                 self._imu(sensor, stamp, center_of_mass[index], before.boat(index),
                           after.boat(index))
-            else:
+            elif isinstance(sensor.spec, GnssSpec):
                 self._gnss(sensor, stamp, center_of_mass[index], after.boat(index))
+            else:
+                self._odometry(sensor, stamp, center_of_mass[index], after.boat(index))
 
     def _imu(self, sensor: _Sensor, stamp, com: np.ndarray, before: BoatState,
              after: BoatState) -> None:
@@ -152,3 +149,28 @@ class SensorPublisher:
                                              antenna, velocity)
         sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading))
         sensor.pubs[1].publish(gnss_velocity(stamp, sensor.frame, reading))
+
+    def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState) -> None:
+        rot = rotation_matrix(after.orientation)
+        reading = measure_odometry(sensor.spec, sensor.key, sensor.state, after.position
+                                   - rot @ com, after.orientation,
+                                   after.velocity - np.cross(after.angular_velocity, com),
+                                   after.angular_velocity)
+        sensor.state += 1
+        sensor.pubs[0].publish(noisy_odometry(stamp, sensor.frame, reading))
+
+
+def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None
+                ) -> tuple[list[TappedPublisher], object]:
+    """A sensor's publishers and its first noise state (an odometry: its sample count)."""
+    if isinstance(spec, ImuSpec):
+        return ([TappedPublisher(node, Imu, names.imu_topic(boat, spec.name), SENSOR_QOS,
+                                 tap)], imu_start(spec, key))
+    if isinstance(spec, GnssSpec):
+        return ([TappedPublisher(node, NavSatFix, names.gnss_fix_topic(boat, spec.name),
+                                 SENSOR_QOS, tap),
+                 TappedPublisher(node, TwistWithCovarianceStamped,
+                                 names.gnss_vel_topic(boat, spec.name), SENSOR_QOS, tap)],
+                gnss_start(spec, key))
+    return ([TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS,
+                             tap)], 0)

@@ -32,8 +32,10 @@ from boat_msgs_py.convert import seconds_to_time, time_to_seconds, vectors, wave
 from boat_msgs_py.names import SAMPLE_SURFACE, SURFACE_CLOUD, WAVE_FIELD, WORLD_FRAME
 from boat_msgs_py.qos import SURFACE_QOS, WAVE_FIELD_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
+from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import PRECISIONS, InvalidSeaStateError, WaveComponent, WaveField
 from ocean_sim.physics.waves import sample_surface as sample
+from ocean_sim.ros.environment import EnvironmentParameters, describe
 
 __all__ = ["COMPONENT_FIELDS", "MAX_SAMPLE_POINTS", "OceanNode"]
 
@@ -71,11 +73,14 @@ class OceanNode(Node):
         tap: also hand every published message to this (recording), or None.
         surface_centers: returns (K, 2) m, centres of the /ocean/surface grids (the boats);
             None = one grid at the origin.
+        environment: the current and the wind (:mod:`ocean_sim.ros.environment`); None =
+            calm.
     """
 
     def __init__(self, sea: WaveField, now: Callable[[], float], epoch: float = 0.0,
                  tap: Tap | None = None,
-                 surface_centers: Callable[[], np.ndarray] | None = None) -> None:
+                 surface_centers: Callable[[], np.ndarray] | None = None,
+                 environment: Environment | None = None) -> None:
         super().__init__("ocean")
         self._sea = sea
         self._now = now
@@ -94,6 +99,8 @@ class OceanNode(Node):
         self.declare_parameter("surface.resolution", 1.0, ParameterDescriptor(
             description="Spacing of the /ocean/surface grid points, m.",
             floating_point_range=_range(0.05, 100.0)))
+        # declared (and first published) before the callback, which checks their changes
+        self.environment = EnvironmentParameters(self, environment or Environment(), epoch, tap)
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self._cloud_rate = self.get_parameter("surface.rate_hz").value  # read every step
         self.add_post_set_parameters_callback(self._after_set_parameters)
@@ -102,7 +109,8 @@ class OceanNode(Node):
         self._next_cloud_t = 0.0
         self._service = self.create_service(SampleSurface, SAMPLE_SURFACE, self._on_sample)
         self.publish_wave_field()
-        self.get_logger().info(f"{self._describe(sea)}; serving {SAMPLE_SURFACE}")
+        self.get_logger().info(f"{self._describe(sea)}; {describe(self.environment.environment)}"
+                               f"; serving {SAMPLE_SURFACE}")
 
     # ------------------------------------------------------------------ sea state
 
@@ -138,6 +146,18 @@ class OceanNode(Node):
                 return SetParametersResult(
                     successful=False,
                     reason=f"precision = {p.value!r} is not allowed: one of {PRECISIONS}")
+        environment = None
+        if EnvironmentParameters.names() & changes.keys():
+            environment, reason = self.environment.check(changes)
+            if reason is not None:
+                return SetParametersResult(successful=False, reason=reason)
+        result = self._set_sea(changes)
+        if result.successful and environment is not None:  # both checked: apply
+            self.environment.apply(environment)
+        return result
+
+    def _set_sea(self, changes: dict) -> SetParametersResult:
+        """Check and apply a change of the sea-state parameters (none: nothing to do)."""
         sea_keys = {"gravity", "depth", *COMPONENT_FIELDS}
         if not sea_keys & changes.keys():
             return SetParametersResult(successful=True)

@@ -21,7 +21,7 @@ import yaml
 
 from boat_dynamics.physics.scenario.boat import DEFAULT_CRITICAL_RATIO, boat_block
 from boat_dynamics.physics.scenario.read import mapping, only
-from boat_dynamics.physics.scenario.sea import ocean_block, simulation_block
+from boat_dynamics.physics.scenario.sea import environment_block, ocean_block, simulation_block
 from boat_dynamics.physics.scenario.specs import (
     BoatSpec,
     Scenario,
@@ -80,9 +80,10 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
         ScenarioError: an invalid key or value, named by its path.
     """
     d = mapping(data, "")
-    only(d, "", ("simulation", "ocean", "boats"))
+    only(d, "", ("simulation", "ocean", "environment", "boats"))
     sim = simulation_block(d.get("simulation"))
     sea = ocean_block(d.get("ocean"), sim)
+    environment = environment_block(d.get("environment"), sim.seed)
     boats_raw = d.get("boats")
     if boats_raw is None:
         boats_raw = [{}]
@@ -97,4 +98,5 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     for i, n in enumerate(names):
         if names.index(n) != i:
             raise ScenarioError(f"boats[{i}].name", n, "must be unique among the boats")
-    return Scenario(simulation=sim, sea=sea, boats=boats, source=source)
+    return Scenario(simulation=sim, sea=sea, boats=boats, source=source,
+                    environment=environment)

@@ -41,6 +41,7 @@ from boat_dynamics.physics.scenario.models import (
 from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
 from boat_dynamics.physics.scenario.sensors import sensors_block
 from boat_dynamics.physics.scenario.specs import BoatSpec, ScenarioError, SimulationSettings
+from boat_dynamics.physics.wind import DEFAULT_WIND_COEFFICIENTS, Windage
 
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
 DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
@@ -49,7 +50,7 @@ DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
-              "inertia_scale", "inertia_products", "hydrodynamics", "sensors")
+              "inertia_scale", "inertia_products", "hydrodynamics", "sensors", "windage")
 
 
 def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
@@ -93,6 +94,8 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
     )
     params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
                                  {} if loaded is None else loaded)
+    params = replace(params, derive=replace(params.derive, windage=_windage(
+        mapping(d.get("windage"), f"{key}.windage"), f"{key}.windage")))
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
                     commands=_commands(d.get("commands"), f"{key}.commands", rudder.max_angle),
                     sensors=sensors_block(d.get("sensors"), f"{key}.sensors", sim.rate_hz),
@@ -123,6 +126,23 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
         critical_ratio=ratio, quadratic="quadratic" not in dd,
         added_mass=model == "resonance" and "added_mass" not in d,
         radiation_damping=radiation, memory=model == "cummins", estimate=missing))
+
+
+def _windage(d: Mapping[str, Any], key: str) -> Windage:
+    """``windage``: the areas the wind acts on and Fossen's c_x, c_y, c_n.
+
+    Areas absent: from the hull above its waterline (``pipeline.init``); coefficients absent:
+    :data:`~boat_dynamics.physics.wind.DEFAULT_WIND_COEFFICIENTS`.
+    """
+    only(d, key, ("frontal_area", "lateral_area", "coefficients"))
+    areas = [number(d, k, key, math.nan, 0.0, 1e6, unit="m^2") if k in d else math.nan
+             for k in ("frontal_area", "lateral_area")]
+    coefficients = vector(d, "coefficients", key, 3, list(DEFAULT_WIND_COEFFICIENTS), low=0.0)
+    if np.any(coefficients > 2.0):
+        raise ScenarioError(f"{key}.coefficients", d.get("coefficients"),
+                            "c_x, c_y, c_n each in [0, 2] (Fossen: about 0.5-0.9, 0.7-0.95, "
+                            "0.05-0.2)")
+    return Windage(areas[0], areas[1], math.nan, np.full(3, math.nan), coefficients)
 
 
 def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:

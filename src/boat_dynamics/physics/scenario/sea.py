@@ -9,6 +9,7 @@ from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, o
 from boat_dynamics.physics.scenario.sensors import datum_block
 from boat_dynamics.physics.scenario.specs import ScenarioError, SimulationSettings
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.physics.environment import GUST_MODELS, Environment, Wind
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.physics.waves import (
     PRECISIONS,
@@ -56,6 +57,32 @@ def simulation_block(raw: Any) -> SimulationSettings:
         datum=datum_block(d.get("datum")),
         publish_tf=flag(d, "publish_tf", key, True),
     )
+
+
+def environment_block(raw: Any, seed: int) -> Environment:
+    """The ``environment:`` block: the current and the wind.
+
+    ``current: {speed, direction_deg}``, ``wind: {speed, direction_deg, gusts, components}``;
+    directions are where they go toward; the gusts' phases come from ``seed``.
+    """
+    key = "environment"
+    d = mapping(raw, key)
+    only(d, key, ("current", "wind"))
+    ck, wk = f"{key}.current", f"{key}.wind"
+    c, w = mapping(d.get("current"), ck), mapping(d.get("wind"), wk)
+    only(c, ck, ("speed", "direction_deg"))
+    only(w, wk, ("speed", "direction_deg", "gusts", "components"))
+    components = w.get("components", 50)
+    if isinstance(components, bool) or not isinstance(components, int) \
+            or not 1 <= components <= 1000:
+        raise ScenarioError(f"{wk}.components", components, "must be an integer in [1, 1000]")
+    wind = Wind.make(number(w, "speed", wk, 0.0, 0.0, 100.0, unit="m/s"),
+                     math.radians(number(w, "direction_deg", wk, 0.0, -360.0, 360.0,
+                                         unit="deg")),
+                     choice(w, "gusts", wk, "none", GUST_MODELS), components, seed)
+    return Environment(number(c, "speed", ck, 0.0, 0.0, 20.0, unit="m/s"),
+                       math.radians(number(c, "direction_deg", ck, 0.0, -360.0, 360.0,
+                                           unit="deg")), wind)
 
 
 def ocean_block(raw: Any, sim: SimulationSettings) -> WaveField:

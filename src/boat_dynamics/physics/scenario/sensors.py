@@ -16,6 +16,8 @@ from boat_dynamics.physics.sensors import (
     GnssSpec,
     ImuSpec,
     InertialNoise,
+    OdometryNoise,
+    OdometrySpec,
     SensorSpec,
 )
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
@@ -23,7 +25,7 @@ from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
 __all__ = ["SENSOR_TYPES", "datum_block", "sensors_block"]
 
 #: The ``type`` of a sensor.
-SENSOR_TYPES = ("imu", "gnss")
+SENSOR_TYPES = ("imu", "gnss", "odometry")
 
 
 def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
@@ -42,6 +44,8 @@ def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
 
 def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, ...]:
     """A boat's ``sensors``: a list of ``{type, name, rate_hz, position, noise}``.
+
+    ``type``: imu, gnss, or odometry (a noisy copy of ``odom``; no ``position``).
 
     Names are unique on the boat (they name its topics and frames); rates are at most the
     physics rate (``simulation.rate_hz``), as a sensor reads the simulated motion.
@@ -65,14 +69,19 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
                                                    "digits or underscores")
         if name in {s.name for s in out}:
             raise ScenarioError(f"{k}.name", name, "must be unique among the boat's sensors")
-        rate = number(d, "rate_hz", k, 100.0 if kind == "imu" else 5.0, 0.0,
+        rate = number(d, "rate_hz", k, {"imu": 100.0, "gnss": 5.0, "odometry": 50.0}[kind], 0.0,
                       physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)")
         position = vector(d, "position", k, 3, [0.0, 0.0, 0.0])
         noise = mapping(d.get("noise"), f"{k}.noise")
         if kind == "imu":
             out.append(_imu(name, rate, position, noise, f"{k}.noise"))
-        else:
+        elif kind == "gnss":
             out.append(GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise")))
+        else:
+            if "position" in d:
+                raise ScenarioError(f"{k}.position", d["position"],
+                                    "not for an odometry (it is the hull reference point's)")
+            out.append(OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise")))
     return tuple(out)
 
 
@@ -103,6 +112,20 @@ def _triad(raw: Any, key: str, default: InertialNoise, unit: str) -> InertialNoi
         raise ScenarioError(f"{key}.bias_correlation_time", 0.0,
                             "must be > 0 s when bias_instability > 0")
     return InertialNoise(*values)
+
+
+def _odometry_noise(d: Mapping[str, Any], key: str) -> OdometryNoise:
+    only(d, key, ("position_sigma", "orientation_sigma_deg", "velocity_sigma",
+                  "angular_velocity_sigma_deg"))
+    default = OdometryNoise()
+    return OdometryNoise(
+        number(d, "position_sigma", key, default.position_sigma, 0.0, 1e4, unit="m"),
+        math.radians(number(d, "orientation_sigma_deg", key,
+                            math.degrees(default.orientation_sigma), 0.0, 90.0, unit="deg")),
+        number(d, "velocity_sigma", key, default.velocity_sigma, 0.0, 100.0, unit="m/s"),
+        math.radians(number(d, "angular_velocity_sigma_deg", key,
+                            math.degrees(default.angular_velocity_sigma), 0.0, 1000.0,
+                            unit="deg/s")))
 
 
 def _gnss_noise(d: Mapping[str, Any], key: str) -> GnssNoise:

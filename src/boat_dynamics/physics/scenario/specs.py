@@ -8,6 +8,7 @@ from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.model import BoatParams, BoatState
 from boat_dynamics.physics.sensors import Datum, SensorSpec
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
+from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import (
     Precision,
     WaveField,
@@ -90,9 +91,10 @@ class BoatSpec:
 
 @dataclass(frozen=True)
 class Scenario:
-    """A whole run: settings, the sea and the boats."""
+    """A whole run: settings, the sea, the boats, and the current and wind."""
 
     simulation: SimulationSettings
     sea: WaveField
     boats: tuple[BoatSpec, ...]
     source: str = "<scenario>"
+    environment: Environment = field(default_factory=Environment)

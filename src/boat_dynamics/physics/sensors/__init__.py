@@ -1,4 +1,6 @@
-"""Sensor models of the core (pure numpy): what an IMU and a GNSS receiver on a boat read.
+"""Sensor models of the core (pure numpy): what sensors on a boat read.
+
+An IMU, a GNSS receiver, and a noisy odometry.
 
 Each sensor is a frozen spec, a frozen noise state and a function ``measure_*(spec, key,
 state, truth...) -> (reading, state)``; the noise is drawn from the scenario seed by sample
@@ -26,11 +28,18 @@ from boat_dynamics.physics.sensors.imu import (
     true_motion,
 )
 from boat_dynamics.physics.sensors.noise import stream_key
+from boat_dynamics.physics.sensors.odometry import (
+    OdometryNoise,
+    OdometryReading,
+    OdometrySpec,
+    measure_odometry,
+)
 
 __all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "ImuReading",
-           "ImuSpec", "ImuState", "InertialNoise", "SensorSpec", "enu_to_geodetic",
+           "ImuSpec", "ImuState", "InertialNoise", "OdometryNoise", "OdometryReading",
+           "OdometrySpec", "SensorSpec", "enu_to_geodetic",
            "geodetic_to_enu", "gnss_start", "imu_start", "measure_gnss", "measure_imu",
-           "stream_key", "true_motion"]
+           "measure_odometry", "stream_key", "true_motion"]
 
 #: A sensor of a boat's ``sensors`` list.
-SensorSpec = ImuSpec | GnssSpec
+SensorSpec = ImuSpec | GnssSpec | OdometrySpec

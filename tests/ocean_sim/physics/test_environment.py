@@ -1,0 +1,43 @@
+"""The current and the wind of the environment: velocities and the NORSOK gusts."""
+
+import math
+
+import numpy as np
+import pytest
+
+from ocean_sim.physics.environment import NORSOK_RANGE, Environment, Wind, norsok_spectrum
+
+
+def test_current_and_mean_wind_point_where_they_go():
+    env = Environment(0.5, math.radians(90.0), Wind.make(10.0, math.radians(180.0)))
+    np.testing.assert_allclose(env.current, [0.0, 0.5, 0.0], atol=1e-15)
+    np.testing.assert_allclose(env.wind.velocity(12.3), [-10.0, 0.0, 0.0], atol=1e-12)
+    assert Environment().is_calm and not env.is_calm
+
+
+def test_norsok_spectrum_closed_form_values():
+    # NORSOK N-003 (2007) eq. 6.4 at 10 m: S(f) = 320 (U/10)^2 / (1 + x^n)^(5/3n),
+    # x = 172 f (U/10)^-0.75; at U = 10 m/s and f = 0.01 Hz: x = 1.72
+    n = 0.468
+    assert norsok_spectrum(np.array([0.01]), 10.0)[0] == pytest.approx(
+        320.0 / (1 + 1.72**n) ** (5 / (3 * n)), rel=1e-12)
+    assert norsok_spectrum(np.array([0.01]), 20.0)[0] > norsok_spectrum(np.array([0.01]),
+                                                                         10.0)[0]
+
+
+def test_gusts_have_the_spectrums_variance_and_the_mean_speed():
+    # u(t) = sum sqrt(2 S df) cos(...): over a long record its mean is U and its variance the
+    # spectrum's integral over the NORSOK range (trapezoid on a fine log grid)
+    wind = Wind.make(12.0, 0.3, "norsok", components=200, seed=4)
+    t = np.arange(0.0, 60_000.0, 0.5)
+    u = wind.speed + np.cos(np.outer(t, wind.frequencies) + wind.phases) @ wind.amplitudes
+    f = np.geomspace(*NORSOK_RANGE, 20001)
+    variance = np.trapezoid(norsok_spectrum(f, 12.0), f)
+    assert u.mean() == pytest.approx(12.0, abs=0.05 * math.sqrt(variance))
+    assert u.var() == pytest.approx(variance, rel=0.05)
+    assert math.sqrt(variance) / 12.0 == pytest.approx(0.12, abs=0.04)  # ~12 % turbulence
+    same = Wind.make(12.0, 0.3, "norsok", components=200, seed=4)
+    assert same.speed_at(123.4) == wind.speed_at(123.4)
+    assert Wind.make(12.0, 0.3, "norsok", components=200, seed=5).speed_at(123.4) != (
+        wind.speed_at(123.4))
+    assert Wind.make(12.0, 0.3).speed_at(123.4) == 12.0  # no gusts
