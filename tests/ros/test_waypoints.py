@@ -62,14 +62,19 @@ def test_the_waypoint_example_follows_its_legs_from_gnss_and_imu(boatsim, tmp_pa
             track.append((p + rotation_matrix(q) @ antenna)[:2])
     track = np.array(track)
     goals = origin + LEGS
-    done = np.flatnonzero(np.hypot(*(track - goals[-1]).T) < 2.5)
-    assert done.size, "the antenna never came within 2.5 m of the last waypoint"
-    underway = track[:done[0] + 1]
+    # the guidance stops once less than 2 m of the last leg remain (by its GNSS): the track
+    # up to its closest approach to the last waypoint is the path it steered
+    closest = int(np.argmin(np.hypot(*(track - goals[-1]).T)))
+    underway = track[:closest + 1]
     error = _distance_to_path(underway, np.vstack([underway[0], goals]))
-    # measured 2026-11: 37 s, largest error 2.8 m (the overshoot of the first corner), RMS
-    # 1.3 m, with the GNSS's 0.6 m noise and 0.3 m correlated error
-    assert elapsed < 60.0
-    assert error.max() < 4.0
-    assert math.sqrt(float(np.mean(error**2))) < 2.0
-    print(f"waypoints: {elapsed:.1f} s, path error max {error.max():.2f} m, "
-          f"RMS {math.sqrt(float(np.mean(error**2))):.2f} m")
+    rms = math.sqrt(float(np.mean(error**2)))
+    result = (f"{elapsed:.1f} s, closest to the last waypoint "
+              f"{np.hypot(*(track[closest] - goals[-1])):.2f} m, path error max "
+              f"{error.max():.2f} m, RMS {rms:.2f} m")
+    print(f"waypoints: {result}")
+    # measured 2026-11: 37-39 s, 2.5-2.8 m largest (the overshoot of the first corner), RMS
+    # 1.2-1.3 m, with the GNSS's 0.6 m noise and 0.3 m correlated error
+    assert np.hypot(*(track[closest] - goals[-1])) < 4.0, result
+    assert elapsed < 60.0, result
+    assert error.max() < 4.0, result
+    assert rms < 2.0, result

@@ -9,6 +9,7 @@ A thin adapter: it checks commands (:mod:`boat_dynamics.physics.commands`), call
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -181,6 +182,7 @@ class DynamicsNode(Node):
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
         self._transforms.publish_static(seconds_to_time(clock.epoch + clock.t))
         self.commands_received = 0
+        self._warned: dict[str, float] = {}  # command topic -> wall time of its last warning
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
         self._lockstep_sub = self.create_subscription(
@@ -367,8 +369,10 @@ class DynamicsNode(Node):
         """
         self._record_command(topic, msg)
         checked = check_command(msg.data, -limit, limit, unit)
-        if checked.problem:
-            self.get_logger().warning(f"{topic}: {checked.problem}", throttle_duration_sec=2.0)
+        now = time.monotonic()
+        if checked.problem and now - self._warned.get(topic, -math.inf) >= 2.0:
+            self._warned[topic] = now  # at most one warning per topic every 2 s (wall)
+            self.get_logger().warning(f"{topic}: {checked.problem}")
         return checked.value
 
     def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
