@@ -67,9 +67,9 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
                                         state.angular_velocity)
     if system.memory is not None and state.memory is not None:  # Cummins: the waves made
         damp = damp + Wrench(*memory_wrench(system.memory.output, state.memory))
-    _, angle = inputs.per_thruster()
     push = _per_group(system, lambda g: thrusters_wrench(
-        g.propulsion, state.throttle[g.index], angle[g.index], com[g.index]))
+        g.propulsion, state.throttle[g.index],
+        [inputs.angle_of(j)[g.index] for j in range(len(g.propulsion))], com[g.index]))
     steer = _per_group(system, lambda g: rudder_wrench(
         g.rudder, inputs.rudder[g.index], relative[g.index, 0],
         system.water_density[g.index], com[g.index]))

@@ -195,12 +195,11 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     Raises:
         ValueError: ``contact`` belongs to another state or sea.
     """
-    commanded, _ = inputs.per_thruster()
-    throttle = np.array(commanded, dtype=float)  # slots past a boat's thrusters: unused
+    throttle = np.zeros_like(state.throttle)  # slots past a boat's thrusters: unused, 0
     for g in system.groups:
         for j, model in enumerate(g.propulsion):
             throttle[g.index, j] = lagged_throttle(model, state.throttle[g.index, j],
-                                                   commanded[g.index, j], dt)
+                                                   inputs.throttle_of(j)[g.index], dt)
     state = replace(state, throttle=throttle)
     if contact is None:
         contact = _contact.contact(system, state, sea)

@@ -11,6 +11,7 @@ tau dT/dt = T_cmd - T, integrated exactly over a step.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,17 +86,17 @@ def thrust(model: Propulsion, throttle, nozzle_angle, center_of_mass: np.ndarray
     return Wrench(force, cross(np.asarray(model.position) - center_of_mass, force))
 
 
-def thrusters_wrench(models: tuple[Propulsion, ...], throttle: np.ndarray, angle: np.ndarray,
-                     center_of_mass: np.ndarray) -> Wrench:
+def thrusters_wrench(models: tuple[Propulsion, ...], throttle: np.ndarray,
+                     angles: Sequence[np.ndarray], center_of_mass: np.ndarray) -> Wrench:
     """The summed wrench of a boat's (or a group's) thrusters.
 
     Args:
         models: the thrusters, each stacked per boat of the group.
         throttle: (G, T) actual thrust fractions, thruster j in column j (T >= len(models)).
-        angle: (G, T) rad, the steering angle of each steerable thruster.
+        angles: per thruster, (G,) rad, its steering angle (used if it is steerable).
         center_of_mass: (G, 3) m, body frame.
     """
-    total = thrust(models[0], throttle[:, 0], angle[:, 0], center_of_mass)
+    total = thrust(models[0], throttle[:, 0], angles[0], center_of_mass)
     for j in range(1, len(models)):
-        total = total + thrust(models[j], throttle[:, j], angle[:, j], center_of_mass)
+        total = total + thrust(models[j], throttle[:, j], angles[j], center_of_mass)
     return total

@@ -155,14 +155,13 @@ class FleetInputs:
         return cls(np.array([_per_thruster(u.throttle) for u in inputs]),
                    np.array([u.rudder for u in inputs], dtype=float), angles)
 
-    def per_thruster(self) -> tuple[np.ndarray, np.ndarray]:
-        """(B, T) throttle commands and (B, T) steering angles, rad, of every thruster slot."""
-        b = self.rudder.shape[0]
-        throttle = (self.throttle if self.throttle.ndim == 2
-                    else np.broadcast_to(self.throttle[:, None], (b, MAX_THRUSTERS)))
-        angle = (self.thruster_angle if self.thruster_angle is not None
-                 else np.broadcast_to(self.rudder[:, None], (b, MAX_THRUSTERS)))
-        return throttle, angle
+    def throttle_of(self, j: int) -> np.ndarray:
+        """(B,) the throttle commands of every boat's thruster ``j``."""
+        return self.throttle if self.throttle.ndim == 1 else self.throttle[:, j]
+
+    def angle_of(self, j: int) -> np.ndarray:
+        """(B,) rad, the steering angles of every boat's thruster ``j`` (if steerable)."""
+        return self.rudder if self.thruster_angle is None else self.thruster_angle[:, j]
 
 
 @dataclass(frozen=True)
