@@ -36,3 +36,14 @@ def test_a_hull_that_sinks_is_refused_before_anything_starts(tmp_path, capsys, e
     err = capsys.readouterr().err
     assert "boats[1].mass: 16000.0 is not allowed: the hull sinks" in err
     assert not (tmp_path / "bag").exists()  # refused before the bag was created
+
+
+@pytest.mark.parametrize("verb", [["run"], ["rao"], ["hydro"]])
+def test_a_hostile_scenario_file_exits_2_with_one_short_line(tmp_path, capsys, verb):
+    rows = ["a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+    rows += [f"a{i}: &a{i} [" + ", ".join([f"*a{i - 1}"] * 9) + "]" for i in range(1, 9)]
+    path = tmp_path / "bomb.yaml"
+    path.write_text("boats:\n  - name: x\n    mass:\n" + "".join(f"      {r}\n" for r in rows))
+    assert main([*verb, str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "aliases expanded" in err and len(err) < 600 and "Traceback" not in err

@@ -80,10 +80,17 @@ def test_sea_state_parameters_change_at_run_time_and_bad_changes_are_refused(boa
          "component arrays must have the same length"),
         ([_double_array("components.amplitude", [8.0, 0.2])], "crests loop"),  # sum Q k a 1.04
         ([_double("depth", -3.0)], "depth = -3.0 is not allowed"),
+        ([_double("surface.size", 2000.0)],  # 1 m apart: 4e6 points
+         "would make 4e+06 /ocean/surface points; at most 1e+06"),
     ]
     for params, reason in cases:
         res = probe.call(single, SetParameters.Request(parameters=params)).results[0]
         assert not res.successful and reason in res.reason, res.reason
+    # each in range, together 1.6e9 points: before, MemoryError took every node down
+    res = probe.call(atomically, SetParametersAtomically.Request(parameters=[
+        _double("surface.size", 2000.0), _double("surface.resolution", 0.05)])).result
+    assert not res.successful
+    assert "would make 1.6e+09 /ocean/surface points; at most 1e+06" in res.reason
     probe.spin_for(0.3)
     assert wave_field_from_msg(fields[-1]) == sea  # nothing new published
     again = probe.call(get, GetParameters.Request(names=["components.amplitude"]))

@@ -290,6 +290,15 @@ class DynamicsNode(Node):
     # ------------------------------------------------------------------ callbacks
 
     def _on_set_parameters(self, params) -> SetParametersResult:
+        """Check and apply a parameter set; an error while doing so refuses it (logged)."""
+        try:
+            return self._set_parameters(params)
+        except Exception as exc:  # no parameter change may end the node
+            self.get_logger().error(f"parameter change refused: {type(exc).__name__}: {exc}")
+            return SetParametersResult(successful=False,
+                                       reason=f"refused: {type(exc).__name__}: {exc}")
+
+    def _set_parameters(self, params) -> SetParametersResult:
         for p in params:
             if p.name in self._mode_params and p.value not in CONTROL_MODES:
                 return SetParametersResult(

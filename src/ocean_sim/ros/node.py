@@ -12,6 +12,7 @@ different lengths must be set together (``set_parameters_atomically``).
 from __future__ import annotations
 
 import array
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -37,10 +38,14 @@ from ocean_sim.physics.waves import PRECISIONS, InvalidSeaStateError, WaveCompon
 from ocean_sim.physics.waves import sample_surface as sample
 from ocean_sim.ros.environment import EnvironmentParameters, describe
 
-__all__ = ["COMPONENT_FIELDS", "MAX_SAMPLE_POINTS", "OceanNode"]
+__all__ = ["COMPONENT_FIELDS", "MAX_CLOUD_POINTS", "MAX_SAMPLE_POINTS", "OceanNode"]
 
 #: Largest batch /ocean/sample_surface answers in one call.
 MAX_SAMPLE_POINTS = 100_000
+
+#: Most points of the /ocean/surface clouds together (a parameter change asking for more is
+#: refused: 1.6 billion took the node down with MemoryError).
+MAX_CLOUD_POINTS = 1_000_000
 
 #: Component parameters: name -> (WaveComponent field, description with unit).
 COMPONENT_FIELDS = {
@@ -140,7 +145,29 @@ class OceanNode(Node):
         ])
 
     def _on_set_parameters(self, params: list[Parameter]) -> SetParametersResult:
-        changes = {p.name: p.value for p in params}
+        """Check a parameter set as a whole; an error while checking refuses it (logged)."""
+        try:
+            return self._check_and_apply({p.name: p.value for p in params}, params)
+        except Exception as exc:  # no parameter change may end the node
+            self.get_logger().error(f"parameter change refused: {type(exc).__name__}: {exc}")
+            return SetParametersResult(successful=False,
+                                       reason=f"refused: {type(exc).__name__}: {exc}")
+
+    def _cloud_points(self, changes: dict) -> int:
+        """Points of the /ocean/surface clouds with ``changes`` applied (every boat's grid)."""
+        size = changes.get("surface.size", self.get_parameter("surface.size").value)
+        res = changes.get("surface.resolution", self.get_parameter("surface.resolution").value)
+        boats = 1 if self._centers is None else len(np.asarray(self._centers()).reshape(-1, 2))
+        return boats * (math.floor(size / res) + 1) ** 2
+
+    def _check_and_apply(self, changes: dict, params: list[Parameter]) -> SetParametersResult:
+        if {"surface.size", "surface.resolution"} & changes.keys():
+            points = self._cloud_points(changes)
+            if points > MAX_CLOUD_POINTS:
+                return SetParametersResult(successful=False, reason=(
+                    f"surface.size / surface.resolution would make {points:.3g} "
+                    f"/ocean/surface points; at most {MAX_CLOUD_POINTS:g} (raise the "
+                    "resolution or shrink the size)"))
         for p in params:
             if p.name == "precision" and p.value not in PRECISIONS:
                 return SetParametersResult(

@@ -184,3 +184,37 @@ def test_wave_precision_reaches_every_boat_and_is_checked():
     assert sc.simulation.wave_precision == sc.boats[0].params.wave_precision == "float64"
     with pytest.raises(ScenarioError, match=r"simulation\.wave_precision: 'float16'.*float32"):
         parse_scenario({"simulation": {"wave_precision": "float16"}})
+
+
+def _alias_bomb(levels: int = 9) -> str:
+    """A billion-laughs YAML: 9^levels values from a few hundred bytes, inside a boat."""
+    rows = ["a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+    rows += [f"a{i}: &a{i} [" + ", ".join([f"*a{i - 1}"] * 9) + "]" for i in range(1, levels)]
+    return "boats:\n  - name: x\n    mass:\n" + "\n".join("      " + r for r in rows) + "\n"
+
+
+@pytest.mark.parametrize(("content", "fragment"), [
+    (bytes(range(256)) * 16, "must be UTF-8 text (YAML); byte 128 is 0x80"),
+    (("boats: " + "[" * 5000 + "]" * 5000).encode(), "nest at most 32 levels"),
+    (("boats: " + "[" * 40 + "]" * 40).encode(), "nest at most 32 levels"),
+    (_alias_bomb().encode(), "at most 200000 values with its YAML aliases expanded"),
+    (b"# padding\n" * 110_000, "at most 1000000 bytes"),
+])
+def test_a_hostile_file_is_refused_with_a_short_message(tmp_path, content, fragment):
+    # before: a binary file raised UnicodeDecodeError, 5000 levels RecursionError, and the
+    # alias bomb's 3.2 GB error message took 63 s and 6.2 GB of memory
+    path = tmp_path / "hostile.yaml"
+    path.write_bytes(content)
+    with pytest.raises(ScenarioError) as err:
+        load_scenario(path)
+    assert err.value.key == "file"
+    assert fragment in err.value.allowed
+    assert len(str(err.value)) < 500
+
+
+def test_a_refusal_never_expands_a_large_value():
+    shared = [list(range(50))] * 50  # 2,500 values through one shared list
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"mass": shared}]})
+    assert err.value.key == "boats[0].mass"
+    assert len(str(err.value)) < 500

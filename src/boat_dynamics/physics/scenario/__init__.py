@@ -54,16 +54,64 @@ def load_scenario(path: str | Path) -> Scenario:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        with p.open("rb") as f:
+            raw = f.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise ScenarioError("file", str(p), f"must be a readable file ({exc.strerror})") from exc
+    if len(raw) > MAX_FILE_BYTES:
+        raise ScenarioError("file", str(p), f"must be at most {MAX_FILE_BYTES} bytes of YAML")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ScenarioError("file", str(p), f"must be UTF-8 text (YAML); byte {exc.start} is "
+                                            f"0x{raw[exc.start]:02x}") from exc
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "somewhere"
         raise ScenarioError("file", str(p), f"must be valid YAML (error at {where})") from exc
+    except RecursionError as exc:  # the YAML composer recurses once per level of nesting
+        raise ScenarioError("file", str(p), f"must nest at most {MAX_DEPTH} levels deep "
+                                            "(the YAML parser ran out of stack)") from exc
     return parse_scenario({} if data is None else data, source=str(p), base_dir=p.parent)
+
+
+#: The largest scenario file read, bytes (the shipped ones are under 5 kB).
+MAX_FILE_BYTES = 1_000_000
+#: The deepest nesting of mappings and lists a scenario may have.
+MAX_DEPTH = 32
+#: The most values (mappings, lists, scalars) a scenario may hold once its YAML aliases are
+#: expanded (an alias bomb holds billions in a few hundred bytes).
+MAX_VALUES = 200_000
+
+
+def _bounded(data: Any, source: str) -> None:
+    """Refuse data nested deeper than MAX_DEPTH or of more than MAX_VALUES values expanded.
+
+    One pass over the distinct containers (shared ones, YAML aliases, are counted by
+    multiplication, not walked again), without recursion: a few milliseconds for any file.
+    """
+    size: dict[int, int] = {}
+    depth: dict[int, int] = {}
+    stack: list[tuple[Any, bool]] = [(data, False)]
+    while stack:
+        node, done = stack.pop()
+        if not isinstance(node, dict | list) or (id(node) in size and not done):
+            continue
+        children = list(node.keys()) + list(node.values()) if isinstance(node, dict) else node
+        inner = [c for c in children if isinstance(c, dict | list)]
+        if not done:
+            stack.append((node, True))
+            stack += [(c, False) for c in inner if id(c) not in size]
+            continue
+        size[id(node)] = 1 + len(children) - len(inner) + sum(size[id(c)] for c in inner)
+        depth[id(node)] = 1 + max((depth[id(c)] for c in inner), default=0)
+        if depth[id(node)] > MAX_DEPTH:
+            raise ScenarioError("file", source, f"must nest at most {MAX_DEPTH} levels deep")
+        if size[id(node)] > MAX_VALUES:
+            raise ScenarioError("file", source, f"must hold at most {MAX_VALUES} values with "
+                                                "its YAML aliases expanded")
 
 
 # --------------------------------------------------------------------------- readers
@@ -79,6 +127,7 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     Raises:
         ScenarioError: an invalid key or value, named by its path.
     """
+    _bounded(data, source)
     d = mapping(data, "")
     only(d, "", ("simulation", "ocean", "environment", "boats"))
     sim = simulation_block(d.get("simulation"))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import reprlib
 from dataclasses import dataclass, field
 
 from boat_dynamics.physics.commands import CommandScript
@@ -28,7 +29,21 @@ class ScenarioError(ValueError):
         self.key = key
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{key}: {value!r} is not allowed: {allowed}")
+        super().__init__(f"{key}: {shortened(value)} is not allowed: {allowed}")
+
+
+_SHORT = reprlib.Repr()
+_SHORT.maxlevel, _SHORT.maxlist, _SHORT.maxtuple, _SHORT.maxdict = 3, 6, 6, 6
+_SHORT.maxstring, _SHORT.maxother, _SHORT.maxlong = 200, 200, 40
+
+
+def shortened(value: object) -> str:
+    """``repr(value)`` cut to a bounded size, however large or deep ``value`` is.
+
+    At most a few hundred characters: a message never expands a huge or alias-shared
+    structure (a YAML alias bomb's repr would be gigabytes).
+    """
+    return _SHORT.repr(value)
 
 
 @dataclass(frozen=True)
