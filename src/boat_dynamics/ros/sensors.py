@@ -120,16 +120,18 @@ class SensorPublisher:
             before: the boats' state at the start of the last step.
             after: their state now.
         """
+        now: dict[int, BoatState] = {}  # each boat's state copied once, for all its sensors
         for index, sensor in self._sensors:
             if not due(sensor.spec.rate_hz):
                 continue
+            if index not in now:
+                now[index] = after.boat(index)
             if isinstance(sensor.spec, ImuSpec):
-                self._imu(sensor, stamp, center_of_mass[index], before.boat(index),
-                          after.boat(index))
+                self._imu(sensor, stamp, center_of_mass[index], before.boat(index), now[index])
             elif isinstance(sensor.spec, GnssSpec):
-                self._gnss(sensor, stamp, center_of_mass[index], after.boat(index))
+                self._gnss(sensor, stamp, center_of_mass[index], now[index])
             else:
-                self._odometry(sensor, stamp, center_of_mass[index], after.boat(index))
+                self._odometry(sensor, stamp, center_of_mass[index], now[index])
 
     def _imu(self, sensor: _Sensor, stamp, com: np.ndarray, before: BoatState,
              after: BoatState) -> None:
