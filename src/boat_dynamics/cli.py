@@ -62,6 +62,10 @@ def _add_run(verbs) -> None:
                      help="stop after S seconds of simulated time")
     run.add_argument("--record", metavar="DIR",
                      help="write every topic to a rosbag2 (MCAP) bag in the new directory DIR")
+    run.add_argument("--exclude-topics", nargs="+", default=[], metavar="TOPIC",
+                     help="with --record: topics not to record (as `ros2 bag record "
+                          "--exclude-topics`; e.g. /rosout, whose wall-clock stamps differ "
+                          "between two otherwise identical runs)")
     run.add_argument("--lockstep", action="store_true",
                      help="with --fast: advance only as far as `boatsim replay` grants, so a "
                           "replay gives the same result on any machine")
@@ -101,6 +105,8 @@ def _add_bag_verbs(verbs) -> None:
     record.add_argument("topics", nargs="*", metavar="TOPIC")
     record.add_argument("-o", "--output", required=True, metavar="DIR",
                         help="new directory for the bag")
+    record.add_argument("--exclude-topics", nargs="+", default=[], metavar="TOPIC",
+                        help="topics not to record")
     compare = verbs.add_parser(
         "compare", help="compare two bags topic by topic within tolerances",
         description="Align two bags by message stamp and report per topic and field the "
@@ -111,6 +117,12 @@ def _add_bag_verbs(verbs) -> None:
     compare.add_argument("--tol", action="append", default=[], metavar="FIELD=VALUE",
                          help="absolute tolerance for fields matching FIELD (fnmatch, e.g. "
                               "'*.position.*=0.01' or '/odom:twist.*=1e-3'); default 1e-9")
+    reindex = verbs.add_parser(
+        "reindex", help="make a bag whose recording was killed readable again",
+        description="Rebuild the MCAP summary and metadata.yaml of BAG (as `ros2 bag "
+                    "reindex`): every message of the complete chunks is kept; a killed "
+                    "recording loses at most its last second.")
+    reindex.add_argument("bag", metavar="BAG")
     plot = verbs.add_parser("plot", help="plot a recorded run to a PNG")
     plot.add_argument("bag", metavar="BAG")
     plot.add_argument("-o", "--output", metavar="FILE.png")
@@ -320,8 +332,9 @@ def _run(args: argparse.Namespace) -> int:
         except InitError as exc:
             return _refuse_boat(path, exc, exc.boat)
         try:
-            return run_processes(scenario, str(path), RunOptions(duration=args.duration,
-                                                                 record=args.record))
+            return run_processes(scenario, str(path), RunOptions(
+                duration=args.duration, record=args.record,
+                exclude_topics=tuple(args.exclude_topics)))
         except RecordError as exc:
             print(f"boatsim: error: {exc}", file=sys.stderr)
             return 2
@@ -331,12 +344,29 @@ def _run(args: argparse.Namespace) -> int:
         return 2
     try:
         return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
-                                        record=args.record, lockstep=args.lockstep))
+                                        record=args.record, lockstep=args.lockstep,
+                                        exclude_topics=tuple(args.exclude_topics)))
     except RecordError as exc:
         print(f"boatsim: error: {exc}", file=sys.stderr)
         return 2
     except InitError as exc:
         return _refuse_boat(path, exc, exc.boat)
+
+
+def _reindex(bag: str) -> int:
+    """``boatsim reindex BAG``: 0 when rewritten, 2 when BAG is not a bag."""
+    from boat_dynamics.tools.bagfile import ReindexError, reindex
+
+    try:
+        report = reindex(bag)
+    except (ReindexError, OSError) as exc:
+        print(f"boatsim reindex: error: {exc}", file=sys.stderr)
+        return 2
+    topics = "  ".join(f"{t} {n}" for t, n in sorted(report.counts.items()))
+    print(f"boatsim: reindexed {bag}: {sum(report.counts.values())} messages on "
+          f"{len(report.counts)} topics, up to bag time {report.end_ns / 1e9:.3f} s; "
+          f"{report.dropped_bytes} bytes of an incomplete tail dropped\n  {topics}")
+    return 0
 
 
 def _refuse_boat(path, exc, index: int) -> int:
@@ -364,10 +394,12 @@ def main(argv: Sequence[str] | None = None) -> int:
             from boat_dynamics.tools.recording import RecordError, record
 
             try:
-                return record(args.topics, args.output)
+                return record(args.topics, args.output, exclude=set(args.exclude_topics))
             except RecordError as exc:
                 print(f"boatsim record: error: {exc}", file=sys.stderr)
                 return 2
+        if args.verb == "reindex":
+            return _reindex(args.bag)
         if args.verb == "plot":
             from boat_dynamics.tools.bags import BagError
             from boat_dynamics.tools.plot import plot_bag

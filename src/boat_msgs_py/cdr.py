@@ -9,8 +9,9 @@ rclpy, finds where each numeric field lives in the bytes (by serializing it agai
 field set to a sentinel), and then writes new values into a copy of the bytes with
 :mod:`struct`. The result deserializes to the same message as
 ``rclpy.serialization.serialize_message`` gives for the same values, with the same length
-(tested; only the alignment padding, which rclpy leaves uninitialized, may differ), so
-subscribers, bags and ROS tools cannot tell.
+(tested), so subscribers, bags and ROS tools cannot tell. The template's alignment padding,
+which rclpy leaves uninitialized, is zeroed once (:func:`boat_msgs_py.typestore.zero_padding`),
+so equal values always give equal bytes.
 """
 
 from __future__ import annotations
@@ -24,6 +25,9 @@ from nav_msgs.msg import Odometry
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 from tf2_msgs.msg import TFMessage
+
+from boat_msgs_py.tap import type_name
+from boat_msgs_py.typestore import zero_padding
 
 __all__ = [
     "CdrTemplate",
@@ -115,7 +119,7 @@ class CdrTemplate:
                 raise TemplateError(f"{msg_class.__name__}.{path} is not a {kind} with a "
                                     "fixed place in the serialized message")
             located.append((places[0], code, size))
-        self._base = bytes(base)
+        self._base = zero_padding(bytes(base), type_name(msg_class))  # deterministic bytes
         # contiguous fields (x, y, z, w ...) are written with one struct call
         self._runs: list[tuple[struct.Struct, int, int]] = []  # (struct, offset, n values)
         start = 0

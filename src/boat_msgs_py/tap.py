@@ -1,7 +1,8 @@
 """Publishers whose serialized messages are also handed to a recorder (a "tap").
 
 Recording at the publisher, in the publishing thread, means nothing the simulation publishes
-can be lost by a slow subscriber, and the bag's timestamps are simulation time.
+can be lost by a slow subscriber, and the bag's timestamps are simulation time. Tapped
+messages have their CDR padding zeroed, so identical runs give identical bytes.
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ from collections.abc import Callable
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rclpy.serialization import serialize_message
+
+from boat_msgs_py.typestore import zero_padding
 
 __all__ = ["Tap", "TappedPublisher", "type_name"]
 
@@ -60,7 +63,10 @@ class TappedPublisher:
         if self._tap is None:
             self._pub.publish(msg)
             return
-        data = msg if isinstance(msg, bytes) else serialize_message(msg)
+        # bytes come from a CdrTemplate, whose padding is zero; a bag holds the same bytes for
+        # the same values (byte-identical bags of identical runs)
+        data = msg if isinstance(msg, bytes) else zero_padding(serialize_message(msg),
+                                                                self._type)
         self._pub.publish(data)
         self._tap.sink(self.topic, self._type, data)
 

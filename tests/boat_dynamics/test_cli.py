@@ -4,7 +4,8 @@ import pytest
 
 from boat_dynamics.cli import main
 
-VERBS = ("run", "query", "record", "compare", "plot", "replay", "rao", "hydro", "teleop")
+VERBS = ("run", "query", "record", "compare", "reindex", "plot", "replay", "rao", "hydro",
+         "teleop")
 
 
 def test_help_lists_the_public_verbs_and_hides_the_internal_one(capsys):
@@ -47,3 +48,9 @@ def test_a_hostile_scenario_file_exits_2_with_one_short_line(tmp_path, capsys, v
     assert main([*verb, str(path)]) == 2
     err = capsys.readouterr().err
     assert "aliases expanded" in err and len(err) < 600 and "Traceback" not in err
+
+
+def test_reindex_of_a_missing_bag_exits_2_with_one_line(tmp_path, capsys):
+    assert main(["reindex", str(tmp_path / "nothing")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("boatsim reindex: error:") and "nothing" in err and "\n" not in err

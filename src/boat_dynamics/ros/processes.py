@@ -39,11 +39,12 @@ def _node_commands(scenario: Scenario, path: str, options: RunOptions, epoch: fl
     return commands
 
 
-def _start_recorder(record: str) -> subprocess.Popen:
+def _start_recorder(record: str, exclude: tuple[str, ...]) -> subprocess.Popen:
     """A ``boatsim record`` process writing every topic to ``record`` (a new directory)."""
     if Path(record).exists():  # refused here, before any process starts
         raise RecordError(f"{Path(record)} already exists; choose a new directory for the bag")
-    return subprocess.Popen([*_CLI, "record", "-o", record],
+    return subprocess.Popen([*_CLI, "record", "-o", record,
+                             *(["--exclude-topics", *exclude] if exclude else [])],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
@@ -71,7 +72,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
         RecordError: the bag directory of ``options.record`` already exists.
     """
     epoch = time.time() + (2.5 if options.record else 1.0)
-    recorder = _start_recorder(options.record) if options.record else None
+    recorder = _start_recorder(options.record, options.exclude_topics) if options.record else None
     children = [subprocess.Popen([*_CLI, "_node", *c])
                 for c in _node_commands(scenario, path, options, epoch)]
     print(f"boatsim: started {len(children)} processes (ocean + {len(scenario.boats)} boats): "

@@ -63,6 +63,7 @@ class RunOptions:
         epoch: s (wall clock) of simulation time 0, shared by the processes of a run; None =
             now (or 0 with ``fast``).
         lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
+        exclude_topics: topics the bag leaves out.
     """
 
     fast: bool = False
@@ -72,6 +73,7 @@ class RunOptions:
     boat: str | None = None
     epoch: float | None = None
     lockstep: bool = False
+    exclude_topics: tuple[str, ...] = ()
 
 
 def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
@@ -160,7 +162,8 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
                                                  if b.name == options.boat))
     if options.role in ("all", "boat"):  # derived parameters, afloat at clock.t: once
         scenario = init_scenario(scenario, clock.t)
-    bag = BagWriter(options.record) if options.record else None
+    bag = (BagWriter(options.record, exclude=set(options.exclude_topics)) if options.record
+           else None)
     stop = threading.Event()
     previous = {sig: signal.signal(sig, lambda *_: stop.set())
                 for sig in (signal.SIGINT, signal.SIGTERM)}
@@ -260,6 +263,7 @@ class _Loop:
             if self.recorder is not None and time.monotonic() > next_discovery:
                 next_discovery = time.monotonic() + _DISCOVERY_PERIOD
                 self.recorder.discover()
+                self.bag.flush_due(self.clock.stamp_ns())  # a quiet second is on disk too
             if self.dynamics is not None:
                 self.display.update(self.dynamics, self.clock.t)
         if self.dynamics is not None:

@@ -71,7 +71,11 @@ def _open_bag(path: str | Path) -> Iterator[tuple[Path, object]]:
     except BagError:
         raise
     except Exception as exc:  # rosbags raises ReaderError, OSError, ...
-        raise BagError(f"{p}: not a readable rosbag2 bag ({_one_line(exc)})") from exc
+        hint = ""
+        if p.is_dir() and any(p.glob("*.mcap")):
+            hint = (f"; if its recording was killed, `boatsim reindex {p}` makes it readable "
+                    "(it loses at most the last second)")
+        raise BagError(f"{p}: not a readable rosbag2 bag ({_one_line(exc)}){hint}") from exc
 
 
 def read_bag(path: str | Path, topics: Iterable[str] | None = None

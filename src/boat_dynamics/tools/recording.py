@@ -10,7 +10,6 @@ subscriber.
 from __future__ import annotations
 
 import importlib
-import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -18,38 +17,17 @@ from typing import TextIO
 
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile
-from rosbags.rosbag2 import StoragePlugin, Writer
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
+from boat_dynamics.tools.bagfile import JazzyWriter
 from boat_msgs_py.qos import RECORD_QOS, latched
 from boat_msgs_py.tap import Tap
+from boat_msgs_py.typestore import TypesNotInstalled, typestore
 
 __all__ = ["BagWriter", "RecordError", "TopicRecorder", "record"]
 
 
 class RecordError(RuntimeError):
     """A bag that cannot be written (the directory exists, or is not writable)."""
-
-
-def _boat_msgs_dir() -> Path:
-    """share/boat_msgs/msg of the install: an ament prefix (colcon) or this venv (PyPI set-up)."""
-    prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
-    for prefix in [*prefixes, sys.prefix]:
-        candidate = Path(prefix) / "share" / "boat_msgs" / "msg"
-        if candidate.is_dir():
-            return candidate
-    raise RecordError("boat_msgs is not installed (no share/boat_msgs/msg in AMENT_PREFIX_PATH "
-                      f"or {sys.prefix}); run `make setup`")
-
-
-def _typestore():
-    store = get_typestore(Stores.ROS2_JAZZY)
-    msg_dir = _boat_msgs_dir()
-    types = {}
-    for path in sorted(msg_dir.glob("*.msg")):
-        types.update(get_types_from_msg(path.read_text(), f"boat_msgs/msg/{path.stem}"))
-    store.register(types)
-    return store
 
 
 def _bag_qos(profile: QoSProfile):
@@ -77,16 +55,26 @@ def _bag_qos(profile: QoSProfile):
 class BagWriter:
     """A rosbag2 bag with MCAP storage, written from serialized (CDR) messages.
 
+    Crash-safe: a chunk is written out once it spans one second of bag time
+    (:class:`boat_dynamics.tools.bagfile.JazzyWriter`); call :meth:`flush_due` when no message
+    may come for a while.
+
     Args:
         path: directory to create; must not exist.
+        exclude: topics never written (``boatsim run --exclude-topics``).
     """
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, exclude: set[str] | frozenset[str] = frozenset()
+                 ) -> None:
         self.path = Path(path)
         if self.path.exists():
             raise RecordError(f"{self.path} already exists; choose a new directory for the bag")
-        self._store = _typestore()
-        self._writer = Writer(self.path, version=9, storage_plugin=StoragePlugin.MCAP)
+        try:
+            self._store = typestore()
+        except TypesNotInstalled as exc:
+            raise RecordError(str(exc)) from exc
+        self.exclude = frozenset(exclude)
+        self._writer = JazzyWriter(self.path)
         try:
             self._writer.open()
         except Exception as exc:  # rosbags raises its own WriterError or OSError
@@ -102,6 +90,8 @@ class BagWriter:
         ``qos``: the publisher's offered QoS, stored in the bag's metadata with the topic's
         first message (``ros2 bag play`` offers it again).
         """
+        if topic in self.exclude:
+            return
         conn = self._connections.get(topic)
         if conn is None:
             offered = (_bag_qos(qos),) if qos is not None else ()
@@ -111,6 +101,11 @@ class BagWriter:
             self.counts[topic] = 0
         self._writer.write(conn, stamp_ns, data)
         self.counts[topic] += 1
+
+    def flush_due(self, now_ns: int) -> None:
+        """Write out the pending chunk if it is a second older than ``now_ns`` (bag time)."""
+        if not self._closed:
+            self._writer.flush_due(now_ns)
 
     def tap(self, stamp_ns: Callable[[], int]) -> Tap:
         """A :class:`Tap` writing into this bag, stamped by ``stamp_ns()`` (ns)."""
@@ -149,7 +144,8 @@ class TopicRecorder:
     def discover(self) -> None:
         """Subscribe to topics that appeared since the last call."""
         for topic, types in self._node.get_topic_names_and_types():
-            if topic in self._subs or topic in self._skip or not types:
+            if (topic in self._subs or topic in self._skip or topic in self._bag.exclude
+                    or not types):
                 continue
             if self._only is not None and topic not in self._only:
                 continue
@@ -182,7 +178,8 @@ class TopicRecorder:
         return on_message
 
 
-def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
+def record(topics: list[str], out: str, status: TextIO = sys.stderr,
+           exclude: set[str] | frozenset[str] = frozenset()) -> int:
     """`boatsim record`: record topics (all when empty) until Ctrl-C; returns the exit status.
 
     New topics are picked up as they appear (discovery every 0.2 s); a live line shows the
@@ -199,7 +196,7 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.signals import SignalHandlerOptions
 
-    bag = BagWriter(out)
+    bag = BagWriter(out, exclude=exclude)
     stop = threading.Event()
     previous = {sig: signal.signal(sig, lambda *_: stop.set())
                 for sig in (signal.SIGINT, signal.SIGTERM)}
@@ -221,6 +218,7 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr) -> int:
             if now >= next_discovery:
                 recorder.discover()
                 next_discovery = now + 0.2  # new topics are caught within 0.2 s
+            bag.flush_due(time.time_ns())
             if now >= next_status:
                 counts = "  ".join(f"{t} {n}" for t, n in sorted(bag.counts.items()))
                 line = f"{sum(bag.counts.values())} messages: {counts}"

@@ -1,0 +1,210 @@
+"""Crash-safe bags and their recovery (boat_dynamics.tools.bagfile), checked with rosbags,
+the mcap library and boatsim's own bag reader.
+
+The writer runs in a child process that is killed with SIGKILL, as an OOM kill or a CI
+time-out would; the stamps are bag time, so nothing here depends on the machine's speed.
+"""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+import yaml
+from geometry_msgs.msg import WrenchStamped
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from mcap.reader import make_reader
+from rclpy.serialization import serialize_message
+from rosbags.highlevel import AnyReader
+from rosbags.rosbag2 import Reader, StoragePlugin, Writer
+
+from boat_dynamics.tools.bagfile import (
+    CHUNK_SPAN_NS,
+    ROS_DISTRO,
+    JazzyWriter,
+    ReindexError,
+    reindex,
+)
+from boat_dynamics.tools.bags import BagError, read_bag
+from boat_msgs_py.typestore import typestore, zero_padding
+
+STEP_NS = 10_000_000  # 100 Hz
+CLOCK = "rosgraph_msgs/msg/Clock"
+WRENCH = "geometry_msgs/msg/WrenchStamped"
+
+_WRITER = textwrap.dedent("""
+    import sys, time
+    from boat_dynamics.tools.bagfile import JazzyWriter
+    from boat_msgs_py.typestore import typestore, zero_padding
+    store = typestore()
+    Clock = store.types["rosgraph_msgs/msg/Clock"]
+    Time = store.types["builtin_interfaces/msg/Time"]
+    writer = JazzyWriter(sys.argv[1])
+    writer.open()
+    conn = writer.add_connection("/clock", "rosgraph_msgs/msg/Clock", typestore=store)
+    n = int(sys.argv[2])
+    for i in range(n):
+        t = i * {step}
+        data = store.serialize_cdr(Clock(Time(t // 10**9, t % 10**9)), "rosgraph_msgs/msg/Clock")
+        writer.write(conn, t, bytes(data))
+    print("written", (n - 1) * {step}, flush=True)
+    time.sleep(600)
+""").format(step=STEP_NS)
+
+
+def _clock(t_ns: int) -> bytes:
+    store = typestore()
+    msg = store.types[CLOCK](store.types["builtin_interfaces/msg/Time"](t_ns // 10**9,
+                                                                           t_ns % 10**9))
+    return bytes(store.serialize_cdr(msg, CLOCK))
+
+
+def _write_bag(path: Path, n: int, close: bool = True) -> JazzyWriter:
+    """A bag of ``n`` /clock messages 10 ms apart (and a wrench every 10th)."""
+    store = typestore()
+    writer = JazzyWriter(path)
+    writer.open()
+    clock = writer.add_connection("/clock", CLOCK, typestore=store)
+    wrench = writer.add_connection("/wrench/total", WRENCH, typestore=store)
+    empty = zero_padding(serialize_message(WrenchStamped()), WRENCH)
+    for i in range(n):
+        writer.write(clock, i * STEP_NS, _clock(i * STEP_NS))
+        if i % 10 == 0:
+            writer.write(wrench, i * STEP_NS, empty)
+    if close:
+        writer.close()
+    return writer
+
+
+def _stamps(bag: Path) -> list[int]:
+    with AnyReader([bag]) as reader:
+        conns = [c for c in reader.connections if c.topic == "/clock"]
+        return [t for _, t, _ in reader.messages(connections=conns)]
+
+
+def test_a_recording_killed_mid_write_keeps_all_but_its_last_second(tmp_path):
+    bag = tmp_path / "bag"
+    n = 1234  # 12.33 s of bag time
+    child = subprocess.Popen([sys.executable, "-c", _WRITER, str(bag), str(n)],
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        line = child.stdout.readline()
+        assert line.startswith("written"), line
+        last_written = int(line.split()[1])
+    finally:
+        child.send_signal(signal.SIGKILL)
+        child.wait()
+    assert not (bag / "metadata.yaml").exists()
+    with pytest.raises(BagError, match="boatsim reindex"):  # the verbs say what to do
+        read_bag(bag)
+
+    report = reindex(bag)
+
+    stamps = _stamps(bag)
+    assert stamps == [i * STEP_NS for i in range(len(stamps))]  # a prefix, in order
+    assert last_written - stamps[-1] < 1_000_000_000, (
+        f"kept up to {stamps[-1] / 1e9} s of {last_written / 1e9} s")
+    assert report.counts == {"/clock": len(stamps)}
+    assert report.end_ns == stamps[-1]
+    assert len(read_bag(bag)["/clock"]) == len(stamps)  # boatsim's reader
+    with open(bag / "bag.mcap", "rb") as f:  # the mcap library, through the summary
+        summary = make_reader(f).get_summary()
+    assert summary.statistics.message_count == len(stamps)
+
+
+def test_chunks_span_at_most_one_second_and_are_on_disk_before_close(tmp_path):
+    writer = _write_bag(tmp_path / "bag", 550, close=False)  # 5.49 s, not closed
+    on_disk = (tmp_path / "bag" / "bag.mcap").stat().st_size
+    writer.close()
+    with open(tmp_path / "bag" / "bag.mcap", "rb") as f:
+        chunks = make_reader(f).get_summary().chunk_indexes
+    spans = [c.message_end_time - c.message_start_time for c in chunks]
+    assert len(chunks) == 11  # 5.49 s in spans under 0.5 s
+    assert max(spans) < CHUNK_SPAN_NS
+    assert on_disk > 0.8 * (tmp_path / "bag" / "bag.mcap").stat().st_size
+
+
+def test_flush_due_writes_a_quiet_chunk_out(tmp_path):
+    writer = _write_bag(tmp_path / "bag", 5, close=False)
+    size = (tmp_path / "bag" / "bag.mcap").stat().st_size
+    writer.flush_due(40 * STEP_NS)  # 0.4 s after the first message: not yet
+    assert (tmp_path / "bag" / "bag.mcap").stat().st_size == size
+    writer.flush_due(CHUNK_SPAN_NS)
+    assert (tmp_path / "bag" / "bag.mcap").stat().st_size > size + 5 * 30
+    writer.close()
+
+
+def test_bags_say_jazzy_and_carry_each_channels_type_hash(tmp_path):
+    _write_bag(tmp_path / "bag", 20)
+    with Reader(tmp_path / "bag") as reader:
+        assert reader.ros_distro == ROS_DISTRO == "jazzy"
+    with open(tmp_path / "bag" / "bag.mcap", "rb") as f:
+        mcap = make_reader(f)
+        channels = mcap.get_summary().channels.values()
+        schemas = mcap.get_summary().schemas
+        embedded = yaml.safe_load(next(mcap.iter_metadata()).metadata["serialized_metadata"])
+    assert embedded["ros_distro"] == "jazzy"
+    assert {c.topic: c.metadata["topic_type_hash"] for c in channels} == {
+        "/clock": typestore().hash_rihs01(CLOCK),
+        "/wrench/total": typestore().hash_rihs01(WRENCH)}
+    assert {schemas[c.schema_id].name for c in channels} == {CLOCK, WRENCH}
+
+
+@settings(max_examples=40, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(cut=st.floats(0.0, 1.0))
+def test_reindex_of_a_bag_cut_anywhere_keeps_a_readable_prefix(tmp_path_factory, cut):
+    root = tmp_path_factory.mktemp("cut")
+    _write_bag(root / "full", 330)
+    data = (root / "full" / "full.mcap").read_bytes()
+    (root / "bag").mkdir()
+    length = max(8, int(cut * len(data)))
+    (root / "bag" / "bag.mcap").write_bytes(data[:length])
+
+    report = reindex(root / "bag")
+
+    stamps = _stamps(root / "bag") if report.counts else []
+    assert stamps == [i * STEP_NS for i in range(len(stamps))]
+    assert 0 <= report.dropped_bytes < length
+    if length == len(data):
+        assert len(stamps) == 330 and report.dropped_bytes == 0
+
+
+def test_reindex_of_a_closed_bag_keeps_every_message_and_is_idempotent(tmp_path):
+    _write_bag(tmp_path / "bag", 250)
+    before = read_bag(tmp_path / "bag")
+    reindex(tmp_path / "bag")
+    first = (tmp_path / "bag" / "bag.mcap").read_bytes()
+    reindex(tmp_path / "bag")
+    assert (tmp_path / "bag" / "bag.mcap").read_bytes() == first
+    after = read_bag(tmp_path / "bag")
+    assert {t: len(m) for t, m in after.items()} == {"/clock": 250, "/wrench/total": 25}
+    assert [s for s, _ in after["/clock"]] == [s for s, _ in before["/clock"]]
+
+
+def test_reindex_computes_the_type_hash_of_a_bag_that_lacks_it(tmp_path):
+    store = typestore()
+    with Writer(tmp_path / "old", version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        conn = writer.add_connection("/clock", CLOCK, typestore=store)
+        writer.write(conn, 0, _clock(0))
+    (tmp_path / "old" / "metadata.yaml").unlink()
+    reindex(tmp_path / "old")
+    with open(tmp_path / "old" / "old.mcap", "rb") as f:
+        (channel,) = make_reader(f).get_summary().channels.values()
+    assert channel.metadata["topic_type_hash"] == store.hash_rihs01(CLOCK)
+
+
+@pytest.mark.parametrize("content", [None, b"", b"not an mcap file at all",
+                                     os.urandom(4096)])
+def test_reindex_refuses_what_is_not_a_bag(tmp_path, content):
+    bag = tmp_path / "bag"
+    bag.mkdir()
+    if content is not None:
+        (bag / "bag.mcap").write_bytes(content)
+    with pytest.raises(ReindexError, match="bag"):
+        reindex(bag)
+    assert not (tmp_path / ".bag.reindex").exists()
