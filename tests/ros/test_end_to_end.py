@@ -1,19 +1,22 @@
 """`boatsim run` end to end over ROS 2: commands in, odometry out, ocean topic and service."""
 
 import math
+import re
 import signal
 import time
 from pathlib import Path
 
 import numpy as np
 import pytest
+import rclpy
 import yaml
 from boat_msgs.msg import WaveField
 from boat_msgs.srv import SampleSurface
 from builtin_interfaces.msg import Time
+from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point
 from nav_msgs.msg import Odometry
-from std_msgs.msg import Float64
+from std_msgs.msg import Float32, Float64
 
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_msgs_py import names
@@ -104,10 +107,42 @@ def test_bad_commands_are_refused_with_a_warning_and_the_sim_keeps_running(boats
     n = len(odoms)
     probe.spin_until(lambda: len(odoms) > n + 20, 10.0, "more /odom after bad commands")
     assert all(math.isfinite(o.pose.pose.position.x) for o in odoms)
+    probe.spin_for(2.1)  # past the warning throttle (wall clock: it throttles log lines)
+    rudder.publish(Float64(data=1e308))  # a clamp the throttle must not hide
+    # every command counted on /diagnostics, the warnings throttled or not
+    counts = {}
+
+    def on_diagnostics(msg):
+        counts.update({kv.key: kv.value for kv in msg.status[0].values
+                       if kv.key.startswith("commands_")})
+
+    probe.node.create_subscription(DiagnosticArray, "/diagnostics", on_diagnostics, 10)
+    probe.spin_until(lambda: counts.get("commands_received") == "21", 20.0,
+                     "21 commands counted on /diagnostics")
+    assert counts == {"commands_received": "21", "commands_ignored_not_finite": "10",
+                      "commands_clamped": "11"}
+    # a publisher of the wrong type is reported once, by name and type (from a participant of
+    # its own: DDS refuses two types on one topic in one participant)
+    other = rclpy.Context()
+    rclpy.init(context=other)
+    node = rclpy.create_node("wrong_type", context=other)
+    try:
+        node.create_publisher(Float32, "/cmd_thrust", 10)
+        wrong = "/cmd_thrust: a publisher of std_msgs/msg/Float32 is ignored"
+        probe.spin_until(lambda: wrong in sim.output(), 20.0, "the wrong-type report")
+        probe.spin_for(5.0)  # two more checks
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=other)
     assert sim.stop() == 0
     out = sim.output()
     assert "/cmd_thrust: ignored nan: must be a finite number in [-1, 1]" in out
     assert "/cmd_rudder: clamped 5 to 0.610865: allowed range is [-0.610865, 0.610865] rad" in out
+    # 9 when the ten 5.0s arrived within 2 s of wall time, as they do unless the machine stalls
+    assert re.search(r"/cmd_rudder: clamped 1e\+308 to 0.610865: allowed range is "
+                     r"\[-0.610865, 0.610865\] rad \([1-9] more clamped since the last "
+                     r"warning; counts on /diagnostics\)", out), out
+    assert out.count(wrong) == 1
     assert "Traceback" not in out
 
 

@@ -108,6 +108,11 @@ class _Boat:
     pubs: dict[str, TappedPublisher] = field(default_factory=dict)
     templates: dict = field(default_factory=dict)  # CdrTemplate per published topic
     subs: list = field(default_factory=list)
+    # command intake, on /diagnostics: messages received on the boat's command topics, and
+    # of those the ones ignored (not finite) and clamped (out of range)
+    received: int = 0
+    ignored: int = 0
+    clamped: int = 0
 
 
 def _rate_descriptor(description: str, high: float) -> ParameterDescriptor:
@@ -176,13 +181,17 @@ class DynamicsNode(Node):
         self._contact: Contact | None = None
         self._remedies: list[str] | None = None  # per boat, for /diagnostics (params only)
         self._clock_template = clock_template()
+        self._command_topics: set[str] = set()  # every boat's, filled by _make_boat
         self.boats = [self._make_boat(spec, i) for i, spec in enumerate(scenario.boats)]
         self._transforms = TransformPublisher(self, list(scenario.boats), tap)
         self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
         self._transforms.publish_static(seconds_to_time(clock.epoch + clock.t))
         self.commands_received = 0
-        self._warned: dict[str, float] = {}  # command topic -> wall time of its last warning
+        # (command topic, "ignored" | "clamped") -> (wall time of its last warning, problems
+        # not warned about since)
+        self._warned: dict[tuple[str, str], tuple[float, int]] = {}
+        self._wrong_types: set[tuple[str, str]] = set()  # (command topic, type) reported
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
         self._lockstep_sub = self.create_subscription(
@@ -235,6 +244,7 @@ class DynamicsNode(Node):
                 COMMAND_QOS))
             if self._tap is not None:  # recorded here, at the simulation time they arrive
                 self._tap.topics.update({thrust_topic, rudder_topic})
+            self._command_topics.update({thrust_topic, rudder_topic})
             self._subscribe_thrusters(boat)
         pos, q = reference_pose(spec.params, spec.initial)
         vel = rotation_matrix(q) @ spec.initial.velocity
@@ -274,6 +284,7 @@ class DynamicsNode(Node):
                 topics.add(angle_topic)
             if self._tap is not None:
                 self._tap.topics.update(topics)
+            self._command_topics.update(topics)
 
     def boat_positions(self) -> np.ndarray:
         """(K, 2) m, world x, y of every boat's hull reference point."""
@@ -371,21 +382,52 @@ class DynamicsNode(Node):
         if self._tap is not None:
             self._tap.sink(topic, "std_msgs/msg/Float64", serialize_message(msg))
 
-    def _checked(self, topic: str, msg: Float64, limit: float, unit: str = "") -> float | None:
-        """Record a command and check it against [-limit, limit]: the value to use, or None.
+    def _checked(self, boat: _Boat, topic: str, msg: Float64, limit: float, unit: str = ""
+                 ) -> float | None:
+        """Record, count and check a command against [-limit, limit]: the value to use or None.
 
-        A value out of range is clamped and a non-finite one ignored, with a warning.
+        A value out of range is clamped and a non-finite one ignored, with a warning at most
+        every 2 s (wall) per topic and kind that says how many it did not show; every one is
+        counted on /diagnostics.
         """
         self._record_command(topic, msg)
+        boat.received += 1
         checked = check_command(msg.data, -limit, limit, unit)
-        now = time.monotonic()
-        if checked.problem and now - self._warned.get(topic, -math.inf) >= 2.0:
-            self._warned[topic] = now  # at most one warning per topic every 2 s (wall)
-            self.get_logger().warning(f"{topic}: {checked.problem}")
+        if checked.problem:
+            kind = "ignored" if checked.value is None else "clamped"
+            if checked.value is None:
+                boat.ignored += 1
+            else:
+                boat.clamped += 1
+            now = time.monotonic()
+            last, unshown = self._warned.get((topic, kind), (-math.inf, 0))
+            if now - last >= 2.0:
+                more = (f" ({unshown} more {kind} since the last warning; counts on "
+                        f"{names.DIAGNOSTICS})" if unshown else "")
+                self.get_logger().warning(f"{topic}: {checked.problem}{more}")
+                self._warned[(topic, kind)] = (now, 0)
+            else:
+                self._warned[(topic, kind)] = (last, unshown + 1)
         return checked.value
 
+    def check_command_types(self) -> None:
+        """Report once per topic and type a publisher of another type on a command topic.
+
+        Its messages never arrive (command topics take std_msgs/Float64). Called by the run
+        loop every few seconds: one graph query for the whole fleet.
+        """
+        for topic, types in self.get_topic_names_and_types():
+            if topic not in self._command_topics:
+                continue
+            for kind in types:
+                if kind != _COMMAND_TYPE and (topic, kind) not in self._wrong_types:
+                    self._wrong_types.add((topic, kind))
+                    self.get_logger().error(
+                        f"{topic}: a publisher of {kind} is ignored: command topics take "
+                        f"{_COMMAND_TYPE} (the value in its data field)")
+
     def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
-        value = self._checked(topic, msg, 1.0)
+        value = self._checked(boat, topic, msg, 1.0)
         if value is None:
             return
         boat.throttle = value
@@ -395,17 +437,18 @@ class DynamicsNode(Node):
             boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = value, self._sim_clock.t, False
 
     def _on_thruster_thrust(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
-        value = self._checked(topic, msg, 1.0)
+        value = self._checked(boat, topic, msg, 1.0)
         if value is not None:
             boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = value, self._sim_clock.t, False
 
     def _on_thruster_angle(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
-        value = self._checked(topic, msg, float(boat.spec.params.thrusters[j].max_angle), "rad")
+        value = self._checked(boat, topic, msg, float(boat.spec.params.thrusters[j].max_angle),
+                              "rad")
         if value is not None:
             boat.angles[j] = value
 
     def _on_rudder(self, boat: _Boat, topic: str, msg: Float64, max_angle: float) -> None:
-        value = self._checked(topic, msg, max_angle, "rad")
+        value = self._checked(boat, topic, msg, max_angle, "rad")
         if value is None:
             return
         boat.rudder = value
@@ -546,9 +589,15 @@ class DynamicsNode(Node):
                                 self._substeps,
                                 remedies=self._remedies)
         self._diag_pub.publish(diagnostic_array(stamp, [
-            (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message, r.values)
+            (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message,
+             (*r.values, ("commands_received", str(boat.received)),
+              ("commands_ignored_not_finite", str(boat.ignored)),
+              ("commands_clamped", str(boat.clamped))))
             for boat, r in zip(self.boats, reports, strict=True)]))
 
+
+#: The type of every command topic.
+_COMMAND_TYPE = "std_msgs/msg/Float64"
 
 #: A radiation memory fitting its coefficients worse than this (relative) is warned about.
 _POOR_FIT = 0.1

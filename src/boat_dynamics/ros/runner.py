@@ -36,6 +36,8 @@ _FIELD_TIMEOUT = 10.0
 _STATUS_PERIOD = 0.25
 #: Wall-clock period of the status line when stderr is not a terminal, s.
 _LOG_STATUS_PERIOD = 5.0
+#: Wall-clock period of the check for command publishers of a wrong type, s.
+_TYPE_CHECK_PERIOD = 2.0
 #: Wall-clock period of topic discovery for the recorder, s.
 _DISCOVERY_PERIOD = 1.0
 #: In --fast mode, serve ROS callbacks (commands, service calls) at most this often, s (wall).
@@ -248,6 +250,7 @@ class _Loop:
         wall0 = (time.time() - self.clock.t if self.options.epoch is None
                  else self.options.epoch)
         next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+        next_type_check = time.monotonic() + _TYPE_CHECK_PERIOD
         self.display.start(self.clock.t)
         while ((self.duration is None or self.clock.t < self.duration - 0.5 / rate)
                and not self.stop.is_set()):
@@ -266,6 +269,9 @@ class _Loop:
                 self.bag.flush_due(self.clock.stamp_ns())  # a quiet second is on disk too
             if self.dynamics is not None:
                 self.display.update(self.dynamics, self.clock.t)
+                if time.monotonic() > next_type_check:
+                    next_type_check = time.monotonic() + _TYPE_CHECK_PERIOD
+                    self.dynamics.check_command_types()
         if self.dynamics is not None:
             self.display.update(self.dynamics, self.clock.t, force=True)
         return 0
