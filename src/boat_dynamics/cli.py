@@ -78,7 +78,9 @@ def _add_run(verbs) -> None:
     node.add_argument("role", choices=("ocean", "boat"))
     node.add_argument("scenario")
     node.add_argument("--boat", default="")
-    node.add_argument("--epoch", type=float, required=True)
+    node.add_argument("--epoch", type=float)  # joining a run (a restarted ocean)
+    node.add_argument("--ready-fd", type=int)  # the start-up handshake (see runner.RunOptions)
+    node.add_argument("--await-recorder", action="store_true")
     node.add_argument("--duration", type=_positive_seconds)
     node.add_argument("--quiet", action="store_true")
 
@@ -311,8 +313,13 @@ def _run(args: argparse.Namespace) -> int:
         print(f"boatsim: error: invalid scenario {path}: {exc}", file=sys.stderr)
         return 2
     if args.verb == "_node":
+        if (args.epoch is None) == (args.ready_fd is None):
+            print("boatsim _node: error: exactly one of --epoch and --ready-fd",
+                  file=sys.stderr)
+            return 2
         options = RunOptions(duration=args.duration, role=args.role, boat=args.boat,
-                             epoch=args.epoch)
+                             epoch=args.epoch, ready_fd=args.ready_fd, supervised=True,
+                             await_recorder=args.await_recorder)
         try:
             return run(scenario, options, status=open(os.devnull, "w") if args.quiet
                        else sys.stderr)

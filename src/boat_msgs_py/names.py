@@ -16,6 +16,7 @@ __all__ = [
     "ODOM",
     "PARAMETER_EVENTS",
     "POSE",
+    "RECORDER_NODE",
     "ROSOUT",
     "SAMPLE_SURFACE",
     "SURFACE_CLOUD",
@@ -76,6 +77,9 @@ TF = "/tf"
 TF_STATIC = "/tf_static"
 
 WORLD_FRAME = "world"
+
+#: The node of `boatsim record` (the --processes children wait until it subscribes to them).
+RECORDER_NODE = "boatsim_record"
 
 
 def boat_topic(boat: str, name: str) -> str:

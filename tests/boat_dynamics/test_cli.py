@@ -23,7 +23,7 @@ def test_the_internal_verb_still_parses(capsys):
     with pytest.raises(SystemExit) as exit_:
         main(["_node", "ocean"])
     assert exit_.value.code == 2
-    assert "the following arguments are required: scenario, --epoch" in capsys.readouterr().err
+    assert "the following arguments are required: scenario" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("extra", [[], ["--processes"], ["--fast", "--record", "BAG"]])

@@ -132,10 +132,13 @@ class DynamicsNode(Node):
         publish_clock: publish /clock (the simulation owns time: --fast).
         tap: also hand every published message to this (recording), or None.
         name: the node name (``boat_dynamics``; one per boat with ``--processes``).
+        deferred: publish nothing stamped before :meth:`start` (``--processes`` start-up,
+            where the clock's epoch is known only once every process is ready).
     """
 
     def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
-                 tap: Tap | None = None, name: str = "boat_dynamics") -> None:
+                 tap: Tap | None = None, name: str = "boat_dynamics",
+                 deferred: bool = False) -> None:
         super().__init__(name)
         sim = scenario.simulation
         self._sim_clock = clock
@@ -186,7 +189,8 @@ class DynamicsNode(Node):
         self._transforms = TransformPublisher(self, list(scenario.boats), tap)
         self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
-        self._transforms.publish_static(seconds_to_time(clock.epoch + clock.t))
+        if not deferred:
+            self.start()
         self.commands_received = 0
         # (command topic, "ignored" | "clamped") -> (wall time of its last warning, problems
         # not warned about since)
@@ -285,6 +289,11 @@ class DynamicsNode(Node):
             if self._tap is not None:
                 self._tap.topics.update(topics)
             self._command_topics.update(topics)
+
+    def start(self) -> None:
+        """Publish what is published once, stamped with the clock (its epoch is now known)."""
+        self._transforms.publish_static(seconds_to_time(self._sim_clock.epoch
+                                                        + self._sim_clock.t))
 
     def boat_positions(self) -> np.ndarray:
         """(K, 2) m, world x, y of every boat's hull reference point."""

@@ -1,19 +1,30 @@
 """`boatsim run --processes`: the ocean and each boat's dynamics node in a process of its own.
 
-The processes share an epoch (the wall-clock time of simulation time 0, a second ahead so
-that they all start on it; 2.5 s with ``--record``, so that the recorder has matched the
-publishers by then) and pace themselves to real time; the parent forwards SIGINT and SIGTERM
-and returns 0 when every child exited 0. Only the first boat's process shows the status line.
-With ``options.record``, a ``boatsim record`` process records every topic and is stopped (bag
-finalized) after the simulation processes have exited.
+Start-up is a handshake, not a delay. Every child builds its nodes, waits (with ``--record``)
+until the recorder has subscribed to each of its publishers, and says "ready" on a pipe; once
+all are ready the parent sends each the epoch (the wall-clock time of simulation time 0, a
+moment ahead) on its stdin, and they start on it, paced to real time. A child that falls
+behind catches up (it steps without waiting until it is on time), so no simulation time is
+skipped and the bag holds every step from 0.
+
+Supervision: the children die with the parent (SIGTERM on its death on Linux, and the end of
+their stdin everywhere); the parent reports a child that dies (which one, how); a dead ocean
+is restarted and joins at the current simulation time with the scenario's sea state (the
+boats keep the last sea state they had meanwhile: they need no ocean to step); a dead boat is
+not (its state is gone). The run's exit status is 1 when any child died. SIGINT and SIGTERM
+are forwarded; the recorder is stopped (its bag finalized) after the simulation's processes.
+Only the first boat's process shows the status line.
 """
 
 from __future__ import annotations
 
+import os
+import select
 import signal
 import subprocess
 import sys
 import time
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
@@ -25,18 +36,58 @@ __all__ = ["run_processes"]
 
 #: The command that starts a boatsim process.
 _CLI = [sys.executable, "-m", "boat_dynamics"]
+#: Simulation time 0 is this far (s, wall clock) after the last child said ready.
+_GO_AHEAD = 0.5
+#: How long the children may take to be ready, s (wall clock).
+_READY_TIMEOUT = 120.0
+#: Period of the parent's watch over its children, s.
+_WATCH_PERIOD = 0.1
 
 
-def _node_commands(scenario: Scenario, path: str, options: RunOptions, epoch: float
-                   ) -> list[list[str]]:
-    """The ``boatsim _node`` arguments of the ocean's process and of each boat's."""
-    common = [path, "--epoch", repr(epoch)]
-    if options.duration is not None:
-        common += ["--duration", repr(options.duration)]
-    commands = [["ocean", *common, "--quiet"]]
+@dataclass
+class _Child:
+    """One child process: ``label`` ("ocean", "boat alpha"), its ``_node`` arguments."""
+
+    label: str
+    args: list[str]
+    proc: subprocess.Popen | None = None
+    ready_fd: int | None = None  # read end of its ready pipe, until it said ready
+    status: int | None = None  # its exit status, once it exited
+    lines: list[bytes] = field(default_factory=list)
+
+
+def _die_with_parent() -> None:
+    """In the child, before exec: SIGTERM when the parent dies (Linux prctl)."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
+
+
+def _spawn(child: _Child, handshake: bool) -> None:
+    """Start ``child``: with a ready pipe (``handshake``), or joining a running simulation."""
+    args = [*_CLI, "_node", *child.args]
+    pass_fds: tuple[int, ...] = ()
+    write_fd = None
+    if handshake:
+        child.ready_fd, write_fd = os.pipe()
+        args += ["--ready-fd", str(write_fd)]
+        pass_fds = (write_fd,)
+    child.proc = subprocess.Popen(args, stdin=subprocess.PIPE, pass_fds=pass_fds,
+                                  preexec_fn=_die_with_parent)
+    if write_fd is not None:
+        os.close(write_fd)
+
+
+def _children(scenario: Scenario, path: str, options: RunOptions) -> list[_Child]:
+    """The ocean's child and each boat's, with their ``_node`` arguments (no epoch yet)."""
+    common = [path, *(["--duration", repr(options.duration)] if options.duration else [])]
+    common += ["--await-recorder"] if options.record else []
+    out = [_Child("ocean", ["ocean", *common, "--quiet"])]
     for i, boat in enumerate(scenario.boats):
-        commands.append(["boat", *common, "--boat", boat.name, *(["--quiet"] if i else [])])
-    return commands
+        out.append(_Child(f"boat {boat.name or '(root)'}",
+                          ["boat", *common, "--boat", boat.name, *(["--quiet"] if i else [])]))
+    return out
 
 
 def _start_recorder(record: str, exclude: tuple[str, ...]) -> subprocess.Popen:
@@ -45,23 +96,105 @@ def _start_recorder(record: str, exclude: tuple[str, ...]) -> subprocess.Popen:
         raise RecordError(f"{Path(record)} already exists; choose a new directory for the bag")
     return subprocess.Popen([*_CLI, "record", "-o", record,
                              *(["--exclude-topics", *exclude] if exclude else [])],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            preexec_fn=_die_with_parent)
 
 
-def _wait_all(children: list[subprocess.Popen], recorder: subprocess.Popen | None,
-              forward) -> list[int]:
-    """Every child's exit status, in order; the recorder (last) is stopped once it is reached."""
-    codes = []
+def _describe(status: int) -> str:
+    """An exit status in words: ``exit status 1``, ``killed by SIGKILL``."""
+    if status < 0:
+        try:
+            return f"killed by {signal.Signals(-status).name}"
+        except ValueError:
+            return f"killed by signal {-status}"
+    return f"exit status {status}"
+
+
+def _await_ready(children: list[_Child], stopping, status: TextIO) -> bool:
+    """Wait until every child wrote "ready"; False when one died first, or on a stop."""
+    deadline = time.monotonic() + _READY_TIMEOUT
+    while any(c.ready_fd is not None for c in children):
+        if stopping():
+            return False
+        for c in children:
+            if c.ready_fd is not None and (code := c.proc.poll()) is not None:
+                c.status = code
+                print(f"boatsim: process {c.label} (pid {c.proc.pid}) died before it was "
+                      f"ready: {_describe(code)}", file=status)
+                return False
+        if time.monotonic() > deadline:
+            late = ", ".join(c.label for c in children if c.ready_fd is not None)
+            print(f"boatsim: not ready after {_READY_TIMEOUT:g} s: {late}", file=status)
+            return False
+        waiting = {c.ready_fd: c for c in children if c.ready_fd is not None}
+        readable, _, _ = select.select(list(waiting), [], [], _WATCH_PERIOD)
+        for fd in readable:
+            if b"ready" in os.read(fd, 64):
+                os.close(fd)
+                waiting[fd].ready_fd = None
+    return True
+
+
+def _go(children: list[_Child], epoch: float) -> None:
     for c in children:
-        if c is recorder and recorder.poll() is None:
-            recorder.send_signal(signal.SIGINT)  # the simulation is over: finalize the bag
-        while True:
-            try:
-                codes.append(c.wait())
-                break
-            except KeyboardInterrupt:
-                forward(signal.SIGINT, None)
-    return codes
+        try:
+            c.proc.stdin.write(f"go {epoch!r}\n".encode())
+            c.proc.stdin.flush()
+        except (BrokenPipeError, OSError):
+            pass  # died meanwhile: the watch reports it
+
+
+def _watch(children: list[_Child], epoch: float, stopping, status: TextIO) -> bool:
+    """Until every boat's process has exited: report deaths, restart the ocean.
+
+    Args:
+        children: the ocean's child first.
+        epoch: s, wall-clock time of simulation time 0 (a restarted ocean joins on it).
+        stopping: forwards the signals the parent received; True once there was one.
+        status: where to report.
+
+    Returns:
+        True when a child died.
+    """
+    died = False
+    boats = [c for c in children if c.label != "ocean"]
+    ocean = children[0]
+    while any(c.status is None for c in boats):
+        time.sleep(_WATCH_PERIOD)
+        stopped = stopping()  # forwards a SIGINT / SIGTERM the parent received
+        for c in children:
+            if c.status is not None or (code := c.proc.poll()) is None:
+                continue
+            c.status = code
+            if code == 0 or stopped:
+                continue
+            died = True
+            print(f"boatsim: process {c.label} (pid {c.proc.pid}) died: {_describe(code)}",
+                  file=status)
+            if c is ocean:
+                c.status = None
+                if "--epoch" not in c.args:  # it joins: no handshake, no wait for the recorder
+                    c.args = [a for a in c.args if a != "--await-recorder"]
+                    c.args += ["--epoch", repr(epoch)]
+                _spawn(c, handshake=False)
+                print(f"boatsim: restarted the ocean (pid {c.proc.pid}); it joins at the "
+                      "current simulation time with the scenario's sea state; the boats keep "
+                      "the last sea state they had meanwhile", file=status)
+    return died
+
+
+def _stop(children: list[_Child], sig: int = signal.SIGINT, timeout: float = 10.0) -> None:
+    """Send ``sig`` to the children still running; kill those that outlive ``timeout``."""
+    running = [c.proc for c in children if c.proc is not None and c.proc.poll() is None]
+    for p in running:
+        p.send_signal(sig)
+    deadline = time.monotonic() + timeout
+    for p in running:
+        try:
+            p.wait(timeout=max(deadline - time.monotonic(), 0.01))
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.wait()
 
 
 def run_processes(scenario: Scenario, path: str, options: RunOptions,
@@ -71,31 +204,45 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     Raises:
         RecordError: the bag directory of ``options.record`` already exists.
     """
-    epoch = time.time() + (2.5 if options.record else 1.0)
     recorder = _start_recorder(options.record, options.exclude_topics) if options.record else None
-    children = [subprocess.Popen([*_CLI, "_node", *c])
-                for c in _node_commands(scenario, path, options, epoch)]
-    print(f"boatsim: started {len(children)} processes (ocean + {len(scenario.boats)} boats): "
-          f"pids {' '.join(str(c.pid) for c in children)}"
-          + (f"; recording to {options.record} (pid {recorder.pid})" if recorder else ""),
-          file=status)
-    if recorder is not None:
-        children.append(recorder)  # stopped last: see _wait_all
-
-    def forward(signum, _frame):
-        for c in children:
-            if c.poll() is None:
-                c.send_signal(signal.SIGINT)
-
-    previous = {sig: signal.signal(sig, forward) for sig in (signal.SIGINT, signal.SIGTERM)}
+    children = _children(scenario, path, options)
+    signals: list[int] = []
+    previous = {sig: signal.signal(sig, lambda signum, _: signals.append(signum))
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    start = time.monotonic()
     try:
-        codes = _wait_all(children, recorder, forward)
-        if recorder is not None:
-            print(f"boatsim: recorded to {options.record}", file=status)
-        return 0 if all(code == 0 for code in codes) else 1
-    finally:
         for c in children:
-            if c.poll() is None:
-                c.kill()
+            _spawn(c, handshake=True)
+        print(f"boatsim: started {len(children)} processes (ocean + {len(scenario.boats)} "
+              f"boats): pids {' '.join(str(c.proc.pid) for c in children)}"
+              + (f"; recording to {options.record} (pid {recorder.pid})" if recorder else ""),
+              file=status)
+        if not _await_ready(children, lambda: bool(signals), status):
+            return 0 if signals else 1
+        epoch = time.time() + _GO_AHEAD
+        _go(children, epoch)
+        print(f"boatsim: every process ready after {time.monotonic() - start:.1f} s"
+              + (" (the recorder subscribed to each)" if recorder else "")
+              + "; simulation time 0 is now", file=status)
+        forwarded = 0
+
+        def stopping() -> bool:
+            nonlocal forwarded
+            for sig in signals[forwarded:]:
+                for c in children:
+                    if c.proc.poll() is None:
+                        c.proc.send_signal(signal.SIGINT if sig == signal.SIGINT else sig)
+            forwarded = len(signals)
+            return bool(signals)
+
+        died = _watch(children, epoch, stopping, status)
+        _stop(children[:1], signal.SIGINT)  # the ocean, when it runs with no duration
+        ok = all(c.status in (0, None) for c in children) and not died
+        return 0 if ok else 1
+    finally:
+        _stop(children)
+        if recorder is not None:
+            _stop([_Child("recorder", [], proc=recorder)], signal.SIGINT, timeout=30.0)
+            print(f"boatsim: recorded to {options.record}", file=status)
         for sig, handler in previous.items():
             signal.signal(sig, handler)

@@ -8,6 +8,7 @@ waiting at all in ``--fast`` mode, where the simulation publishes /clock.
 from __future__ import annotations
 
 import math
+import os
 import signal
 import sys
 import threading
@@ -25,11 +26,14 @@ from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
 from boat_dynamics.ros.node import DynamicsNode, SimClock
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
+from boat_msgs_py import names
 from boat_msgs_py.qos import RECORD_QOS
 from ocean_sim.ros.node import OceanNode
 
 __all__ = ["RunOptions", "run"]
 
+#: How long a --processes child waits for the recorder to subscribe to it, s (wall).
+_RECORDER_TIMEOUT = 60.0
 #: How long to wait for the dynamics node to receive the first wave field, s (wall).
 _FIELD_TIMEOUT = 10.0
 #: Wall-clock period of the live status line, s.
@@ -66,6 +70,13 @@ class RunOptions:
             now (or 0 with ``fast``).
         lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
         exclude_topics: topics the bag leaves out.
+        ready_fd: a ``--processes`` child's start-up handshake: write "ready" to this file
+            descriptor once the nodes exist (and, with ``await_recorder``, the recorder
+            subscribes to every publisher), then take the epoch from the parent's
+            "go EPOCH" line on stdin; nothing stamped is published before. None = no
+            handshake.
+        supervised: a ``--processes`` child: end when stdin ends (the parent died).
+        await_recorder: with ``ready_fd``: wait for the recorder before saying ready.
     """
 
     fast: bool = False
@@ -76,6 +87,9 @@ class RunOptions:
     epoch: float | None = None
     lockstep: bool = False
     exclude_topics: tuple[str, ...] = ()
+    ready_fd: int | None = None
+    supervised: bool = False
+    await_recorder: bool = False
 
 
 def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
@@ -169,8 +183,10 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     stop = threading.Event()
     previous = {sig: signal.signal(sig, lambda *_: stop.set())
                 for sig in (signal.SIGINT, signal.SIGTERM)}
+    parent = _Parent(stop) if options.supervised or options.ready_fd is not None else None
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     loop = _Loop(scenario, options, clock, fast, bag, stop, _Status(status, len(scenario.boats)))
+    loop.parent = parent
     try:
         return loop.run()
     except (KeyboardInterrupt, ExternalShutdownException):
@@ -180,6 +196,37 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         rclpy.try_shutdown()
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+
+
+class _Parent:
+    """The parent of a ``--processes`` child, heard on stdin.
+
+    Its "go EPOCH" line starts the run; its death (stdin ends) stops the child.
+
+    Args:
+        stop: set when stdin ends.
+    """
+
+    def __init__(self, stop: threading.Event) -> None:
+        self.epoch: float | None = None
+        self.go = threading.Event()
+        threading.Thread(target=self._listen, args=(stop,), daemon=True,
+                         name="boatsim-parent").start()
+
+    def _listen(self, stop: threading.Event) -> None:
+        for line in sys.stdin:
+            words = line.split()
+            if len(words) == 2 and words[0] == "go":
+                self.epoch = float(words[1])
+                self.go.set()
+        stop.set()  # the parent is gone (or closed the pipe): end cleanly
+
+
+def _recorded(node, publisher) -> bool:
+    """Whether the recorder subscribes to ``publisher``'s topic and a subscription matched."""
+    return publisher.get_subscription_count() > 0 and any(
+        info.node_name == names.RECORDER_NODE
+        for info in node.get_subscriptions_info_by_topic(publisher.topic_name))
 
 
 class _Loop:
@@ -203,6 +250,7 @@ class _Loop:
                          else scenario.simulation.duration)
         self.executor = SingleThreadedExecutor()
         self.dynamics = self.ocean = self.recorder = None
+        self.parent: _Parent | None = None  # a --processes child's parent
         self.nodes = []
         self._next_spin = 0.0  # fast mode: wall time (monotonic) of the next callback round
 
@@ -211,12 +259,15 @@ class _Loop:
         options, clock, bag, fast = self.options, self.clock, self.bag, self.fast
         scenario = self.scenario
         tap = bag.tap(clock.stamp_ns) if bag is not None else None
+        deferred = options.ready_fd is not None  # the epoch comes with the parent's go
         if options.role in ("all", "boat"):
             name = "boat_dynamics" if options.role == "all" else f"boat_dynamics_{options.boat}"
-            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name)
+            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name,
+                                         deferred=deferred)
             self.nodes.append(self.dynamics)
         if options.role in ("all", "ocean"):
-            self.ocean = OceanNode(scenario.sea, now=lambda: clock.t, epoch=clock.epoch, tap=tap,
+            self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
+                                   epoch=None if deferred else clock.epoch, tap=tap,
                                    surface_centers=(self.dynamics.boat_positions
                                                     if self.dynamics else None),
                                    environment=scenario.environment)
@@ -237,18 +288,23 @@ class _Loop:
             The exit status: 0, or 1 when no wave field arrived.
         """
         self._make_nodes()
+        if self.options.ready_fd is not None and not self._handshake():
+            return 0  # stopped before the start
         if not self._wait_for_sea():
             return 1
         if self.stop.is_set():
             return 0
+        wall0 = (time.time() - self.clock.t
+                 if self.options.epoch is None and self.options.ready_fd is None
+                 else self.clock.epoch)  # a late process catches up: no time is skipped
+        if not self.fast:
+            self._serve_callbacks(wall0)  # --processes: the outputs at t are due at wall0 + t
         if self.dynamics is not None:
             self.dynamics.publish_outputs()
         if self.ocean is not None:
             self.ocean.advance(self.clock.t)
         self._log_start()
         rate = self.scenario.simulation.rate_hz
-        wall0 = (time.time() - self.clock.t if self.options.epoch is None
-                 else self.options.epoch)
         next_discovery = time.monotonic() + _DISCOVERY_PERIOD
         next_type_check = time.monotonic() + _TYPE_CHECK_PERIOD
         self.display.start(self.clock.t)
@@ -275,6 +331,41 @@ class _Loop:
         if self.dynamics is not None:
             self.display.update(self.dynamics, self.clock.t, force=True)
         return 0
+
+    def _handshake(self) -> bool:
+        """--processes start-up: say ready, wait for the parent's epoch, publish with it.
+
+        Returns:
+            False when stopped before the parent's go.
+        """
+        if self.options.await_recorder:
+            self._await_recorder()
+        os.write(self.options.ready_fd, b"ready\n")
+        os.close(self.options.ready_fd)
+        while not self.parent.go.is_set():
+            if self.stop.is_set():
+                return False
+            self.executor.spin_once(timeout_sec=0.05)
+        self.clock.epoch = self.parent.epoch
+        if self.ocean is not None:
+            self.ocean.start(self.clock.epoch)
+        if self.dynamics is not None:
+            self.dynamics.start()
+        return True
+
+    def _await_recorder(self) -> None:
+        """Serve callbacks until the recorder subscribes to every publisher of this process."""
+        deadline = time.monotonic() + _RECORDER_TIMEOUT
+        publishers = [(n, p) for n in self.nodes for p in n.publishers]
+        while not self.stop.is_set():
+            missing = sorted({p.topic_name for n, p in publishers if not _recorded(n, p)})
+            if not missing:
+                return
+            if time.monotonic() > deadline:
+                self.logger.warning(f"the recorder has not subscribed to {', '.join(missing)} "
+                                    f"after {_RECORDER_TIMEOUT:g} s; starting without it")
+                return
+            self.executor.spin_once(timeout_sec=0.1)
 
     def _wait_for_sea(self) -> bool:
         """Serve callbacks until the dynamics node has the wave field; False on a time-out."""

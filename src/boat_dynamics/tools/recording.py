@@ -19,6 +19,7 @@ from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile
 
 from boat_dynamics.tools.bagfile import JazzyWriter
+from boat_msgs_py import names
 from boat_msgs_py.qos import RECORD_QOS, latched
 from boat_msgs_py.tap import Tap
 from boat_msgs_py.typestore import TypesNotInstalled, typestore
@@ -201,7 +202,7 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
     previous = {sig: signal.signal(sig, lambda *_: stop.set())
                 for sig in (signal.SIGINT, signal.SIGTERM)}
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-    node = rclpy.create_node("boatsim_record")
+    node = rclpy.create_node(names.RECORDER_NODE)
     executor = SingleThreadedExecutor()
     executor.add_node(node)
     tty = status.isatty()

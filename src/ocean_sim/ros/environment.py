@@ -41,11 +41,12 @@ class EnvironmentParameters:
     Args:
         node: the ocean node.
         environment: the scenario's environment (its wind's seed is kept for the gusts).
-        epoch: s, the stamp of simulation time 0.
+        epoch: s, the stamp of simulation time 0; None = not known yet (nothing is published
+            before :meth:`start`).
         tap: the recorder's tap, or None.
     """
 
-    def __init__(self, node: Node, environment: Environment, epoch: float,
+    def __init__(self, node: Node, environment: Environment, epoch: float | None,
                  tap: Tap | None) -> None:
         self._node = node
         self.environment = environment
@@ -66,6 +67,12 @@ class EnvironmentParameters:
                                    integer_range=[IntegerRange(from_value=1, to_value=1000,
                                                                step=1)]))
         self._pub = TappedPublisher(node, EnvironmentMsg, ENVIRONMENT, ENVIRONMENT_QOS, tap)
+        if epoch is not None:
+            self.publish()
+
+    def start(self, epoch: float) -> None:
+        """Take the stamp of simulation time 0 (s) and publish the environment."""
+        self._epoch = epoch
         self.publish()
 
     @staticmethod
@@ -97,6 +104,8 @@ class EnvironmentParameters:
 
     def publish(self) -> None:
         """(Re)publish the environment on /ocean/environment, stamped at simulation time 0."""
+        if self._epoch is None:
+            return  # published by start()
         self._pub.publish(environment_to_msg(self.environment, seconds_to_time(self._epoch)))
 
 

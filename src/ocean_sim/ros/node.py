@@ -74,7 +74,8 @@ class OceanNode(Node):
         sea: the initial sea state.
         now: returns the simulation time, s (the shared simulation clock).
         epoch: s, message stamp of simulation time 0 (0 when the simulation owns /clock,
-            the wall-clock start time when it runs in real time).
+            the wall-clock start time when it runs in real time); None = not known yet:
+            nothing stamped is published before :meth:`start` (``--processes`` start-up).
         tap: also hand every published message to this (recording), or None.
         surface_centers: returns (K, 2) m, centres of the /ocean/surface grids (the boats);
             None = one grid at the origin.
@@ -82,7 +83,7 @@ class OceanNode(Node):
             calm.
     """
 
-    def __init__(self, sea: WaveField, now: Callable[[], float], epoch: float = 0.0,
+    def __init__(self, sea: WaveField, now: Callable[[], float], epoch: float | None = 0.0,
                  tap: Tap | None = None,
                  surface_centers: Callable[[], np.ndarray] | None = None,
                  environment: Environment | None = None) -> None:
@@ -113,7 +114,8 @@ class OceanNode(Node):
         self._cloud_pub = TappedPublisher(self, PointCloud2, SURFACE_CLOUD, SURFACE_QOS, tap)
         self._next_cloud_t = 0.0
         self._service = self.create_service(SampleSurface, SAMPLE_SURFACE, self._on_sample)
-        self.publish_wave_field()
+        if epoch is not None:
+            self.publish_wave_field()
         self.get_logger().info(f"{self._describe(sea)}; {describe(self.environment.environment)}"
                                f"; serving {SAMPLE_SURFACE}")
 
@@ -217,12 +219,20 @@ class OceanNode(Node):
             if p.name == "surface.rate_hz":
                 self._cloud_rate = float(p.value)
 
+    def start(self, epoch: float) -> None:
+        """Take the stamp of simulation time 0 (s); publish the sea state and environment."""
+        self._epoch = epoch
+        self.environment.start(epoch)
+        self.publish_wave_field()
+
     def publish_wave_field(self) -> None:
         """(Re)publish the current sea state on /ocean/wave_field, stamped at simulation time 0.
 
         The stamp is the epoch (the stamp of simulation time 0) so that subscribers can turn
         any message stamp into simulation time.
         """
+        if self._epoch is None:
+            return  # published by start()
         self._field_pub.publish(wave_field_to_msg(self._sea, seconds_to_time(self._epoch)))
 
     # ------------------------------------------------------------------ surface cloud
@@ -278,6 +288,11 @@ class OceanNode(Node):
                                 f"finite ({bad.size} non-finite points); nothing computed")
             return response
         stamp = request.stamp
+        if self._epoch is None and (stamp.sec or stamp.nanosec):
+            response.success = False
+            response.message = ("the simulation has not started: its clock has no stamp yet "
+                                "(ask with a zero stamp for simulation time 0)")
+            return response
         t = self._now() if stamp.sec == 0 and stamp.nanosec == 0 else (
             time_to_seconds(stamp) - self._epoch)
         surface = sample(self._sea, xy, t, precision=self.get_parameter("precision").value)
