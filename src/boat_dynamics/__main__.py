@@ -2,6 +2,9 @@
 
 import sys
 
-from boat_dynamics.cli import main
+try:
+    from boat_dynamics.cli import main
+except KeyboardInterrupt:  # Ctrl-C while starting: stop quietly, as the verbs do
+    sys.exit(130)
 
 sys.exit(main())

@@ -83,6 +83,8 @@ def _add_run(verbs) -> None:
     node.add_argument("--await-recorder", action="store_true")
     node.add_argument("--duration", type=_positive_seconds)
     node.add_argument("--quiet", action="store_true")
+    surface = verbs.add_parser("_surface")  # `run`'s surface server (ocean_sim.ros)
+    surface.add_argument("--parent", type=int)
 
 
 def _add_query(verbs) -> None:
@@ -385,8 +387,8 @@ def _refuse_boat(path, exc, index: int) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``boatsim``; returns the exit status."""
-    args = _parser().parse_args(argv)
     try:
+        args = _parser().parse_args(argv)
         if args.verb in ("run", "_node"):
             return _run(args)
         if args.verb == "query":
@@ -405,6 +407,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             except RecordError as exc:
                 print(f"boatsim record: error: {exc}", file=sys.stderr)
                 return 2
+        if args.verb == "_surface":
+            from ocean_sim.ros.surface_server import serve
+
+            return serve(args.parent)
         if args.verb == "reindex":
             return _reindex(args.bag)
         if args.verb == "plot":

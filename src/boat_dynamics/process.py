@@ -1,15 +1,37 @@
-"""A process-wide setting for speed, applied by ``boatsim`` (and the benchmarks) at start-up.
+"""Process-wide settings, and child processes that die with their parent.
 
-(The other one, one BLAS thread, is an environment variable that ``boatsim`` sets before
-numpy loads: see :mod:`boat_dynamics.cli`.)
+Memory kept for speed is applied by ``boatsim`` and the benchmarks at start-up.
+
+(The other speed setting, one BLAS thread, is an environment variable that ``boatsim`` sets
+before numpy loads: see :mod:`boat_dynamics.cli`.)
 """
 
 from __future__ import annotations
 
 import ctypes
+import signal
+import subprocess
 import sys
 
-__all__ = ["keep_freed_memory"]
+__all__ = ["die_with_parent", "keep_freed_memory", "start_child"]
+
+#: prctl option: the signal a process gets when its parent dies (linux/prctl.h).
+_PR_SET_PDEATHSIG = 1
+
+
+def die_with_parent() -> None:
+    """In a child, before exec: SIGTERM when the parent dies (Linux; elsewhere nothing)."""
+    if sys.platform.startswith("linux"):
+        ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
+def start_child(args: list[str], **popen) -> subprocess.Popen:
+    """A ``boatsim`` child process (``python -m boat_dynamics ARGS``) that dies with this one.
+
+    Its stdin is a pipe from this process, so it also sees this process end on any system.
+    """
+    return subprocess.Popen([sys.executable, "-m", "boat_dynamics", *args],
+                            stdin=subprocess.PIPE, preexec_fn=die_with_parent, **popen)
 
 #: glibc mallopt parameters (malloc.h).
 _M_TRIM_THRESHOLD = -1

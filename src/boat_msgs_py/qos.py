@@ -6,13 +6,20 @@ Publishers are RELIABLE so that subscribers created with the rclpy default (reli
 
 from __future__ import annotations
 
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    qos_profile_parameter_events,
+)
 
 __all__ = [
     "CLOCK_QOS",
     "COMMAND_QOS",
     "DIAGNOSTICS_QOS",
     "ENVIRONMENT_QOS",
+    "PARAMETER_EVENTS_QOS",
     "RECORD_QOS",
     "SENSOR_QOS",
     "STATE_QOS",
@@ -73,6 +80,8 @@ TF_STATIC_QOS = QoSProfile(
 #: <ns>/<imu>/data, <ns>/<gnss>/fix and vel: reliable, last 10, volatile (best-effort
 #: sensor-data subscribers connect too).
 SENSOR_QOS = STATE_QOS
+#: /parameter_events, as rclpy publishes it (reliable, last 1000, volatile).
+PARAMETER_EVENTS_QOS = qos_profile_parameter_events
 #: A recorder's subscriptions: reliable, a deep queue (a busy recorder must not drop).
 RECORD_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
 

@@ -17,6 +17,8 @@ from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point
 from nav_msgs.msg import Odometry
+from rcl_interfaces.srv import SetParameters
+from rclpy.parameter import Parameter
 from std_msgs.msg import Float32, Float64
 
 from boat_dynamics.physics.rigid_body import quat_to_euler
@@ -188,6 +190,22 @@ def test_late_joiner_gets_wave_field_and_service_matches_the_library(boatsim, pr
     too_many = probe.call(client, SampleSurface.Request(points=[Point()] * 100_001), timeout=30)
     assert not too_many.success
     assert too_many.message == "100001 points requested; at most 100000 per call"
+    # served beside the simulation's process (a big request held its loop 0.76 s), by the
+    # surface server, which follows the ocean node's `precision`
+    assert names.SAMPLE_SURFACE in {n for n, _ in probe.node.get_service_names_and_types_by_node(
+        "ocean_surface", "/")}
+    assert names.SAMPLE_SURFACE not in {
+        n for n, _ in probe.node.get_service_names_and_types_by_node("ocean", "/")}
+    set_params = probe.node.create_client(SetParameters, "/ocean/set_parameters")
+    result = probe.call(set_params, SetParameters.Request(parameters=[Parameter(
+        "precision", value="float64").to_parameter_msg()])).results[0]
+    assert result.successful, result.reason
+
+    def exact_answer() -> bool:
+        response = probe.call(client, request)
+        return np.abs(np.array(response.heights) - exact.heights).max() < 1e-12
+
+    probe.spin_until(exact_answer, 10.0, "float64 answers")
     assert sim.stop() == 0
 
 

@@ -29,13 +29,12 @@ from pathlib import Path
 from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
+from boat_dynamics.process import start_child
 from boat_dynamics.ros.runner import RunOptions
 from boat_dynamics.tools.recording import RecordError
 
 __all__ = ["run_processes"]
 
-#: The command that starts a boatsim process.
-_CLI = [sys.executable, "-m", "boat_dynamics"]
 #: Simulation time 0 is this far (s, wall clock) after the last child said ready.
 _GO_AHEAD = 0.5
 #: How long the children may take to be ready, s (wall clock).
@@ -56,25 +55,16 @@ class _Child:
     lines: list[bytes] = field(default_factory=list)
 
 
-def _die_with_parent() -> None:
-    """In the child, before exec: SIGTERM when the parent dies (Linux prctl)."""
-    if sys.platform.startswith("linux"):
-        import ctypes
-
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG = 1
-
-
 def _spawn(child: _Child, handshake: bool) -> None:
     """Start ``child``: with a ready pipe (``handshake``), or joining a running simulation."""
-    args = [*_CLI, "_node", *child.args]
+    args = ["_node", *child.args]
     pass_fds: tuple[int, ...] = ()
     write_fd = None
     if handshake:
         child.ready_fd, write_fd = os.pipe()
         args += ["--ready-fd", str(write_fd)]
         pass_fds = (write_fd,)
-    child.proc = subprocess.Popen(args, stdin=subprocess.PIPE, pass_fds=pass_fds,
-                                  preexec_fn=_die_with_parent)
+    child.proc = start_child(args, pass_fds=pass_fds)
     if write_fd is not None:
         os.close(write_fd)
 
@@ -94,10 +84,9 @@ def _start_recorder(record: str, exclude: tuple[str, ...]) -> subprocess.Popen:
     """A ``boatsim record`` process writing every topic to ``record`` (a new directory)."""
     if Path(record).exists():  # refused here, before any process starts
         raise RecordError(f"{Path(record)} already exists; choose a new directory for the bag")
-    return subprocess.Popen([*_CLI, "record", "-o", record,
-                             *(["--exclude-topics", *exclude] if exclude else [])],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            preexec_fn=_die_with_parent)
+    return start_child(["record", "-o", record,
+                        *(["--exclude-topics", *exclude] if exclude else [])],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
 def _describe(status: int) -> str:

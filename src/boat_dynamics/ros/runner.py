@@ -1,8 +1,12 @@
 """`boatsim run`: the ocean node and the dynamics node in one process, on one clock.
 
 The loop takes one physics step, publishes what is due, then serves ROS callbacks (commands,
-service calls) until the next step is due: paced to the wall clock in real time, or with no
-waiting at all in ``--fast`` mode, where the simulation publishes /clock.
+parameter changes) until the next step is due: paced to the wall clock in real time, or with
+no waiting at all in ``--fast`` mode, where the simulation publishes /clock.
+
+/ocean/sample_surface is served by a surface server process beside this one
+(:mod:`ocean_sim.ros.surface_server`): a large request served here held the loop for up to
+0.64 s (100,000 points), 1.8 s (1,000,000, refused).
 """
 
 from __future__ import annotations
@@ -10,6 +14,7 @@ from __future__ import annotations
 import math
 import os
 import signal
+import subprocess
 import sys
 import threading
 import time
@@ -24,6 +29,7 @@ from boat_dynamics.physics.boat import reference_pose
 from boat_dynamics.physics.pipeline import init_scenario
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
+from boat_dynamics.process import start_child
 from boat_dynamics.ros.node import DynamicsNode, SimClock
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
 from boat_msgs_py import names
@@ -251,6 +257,7 @@ class _Loop:
         self.executor = SingleThreadedExecutor()
         self.dynamics = self.ocean = self.recorder = None
         self.parent: _Parent | None = None  # a --processes child's parent
+        self.surface_server: subprocess.Popen | None = None
         self.nodes = []
         self._next_spin = 0.0  # fast mode: wall time (monotonic) of the next callback round
 
@@ -265,9 +272,14 @@ class _Loop:
             self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name,
                                          deferred=deferred)
             self.nodes.append(self.dynamics)
+        if options.role == "all":  # the surface service beside this process (module docs)
+            # its own session: a terminal's Ctrl-C is this process's to handle
+            self.surface_server = start_child(["_surface", "--parent", str(os.getpid())],
+                                              start_new_session=True)
         if options.role in ("all", "ocean"):
             self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
                                    epoch=None if deferred else clock.epoch, tap=tap,
+                                   serve_surface=options.role == "ocean",
                                    surface_centers=(self.dynamics.boat_positions
                                                     if self.dynamics else None),
                                    environment=scenario.environment)
@@ -429,3 +441,10 @@ class _Loop:
             self.executor.remove_node(n)
             n.destroy_node()
         self.executor.shutdown(timeout_sec=0.1)
+        if self.surface_server is not None and self.surface_server.poll() is None:
+            self.surface_server.terminate()  # quiet even while it is still importing
+            try:
+                self.surface_server.wait(timeout=2.0)
+            except subprocess.TimeoutExpired:
+                self.surface_server.kill()
+                self.surface_server.wait()

@@ -38,7 +38,8 @@ from ocean_sim.physics.waves import PRECISIONS, InvalidSeaStateError, WaveCompon
 from ocean_sim.physics.waves import sample_surface as sample
 from ocean_sim.ros.environment import EnvironmentParameters, describe
 
-__all__ = ["COMPONENT_FIELDS", "MAX_CLOUD_POINTS", "MAX_SAMPLE_POINTS", "OceanNode"]
+__all__ = ["COMPONENT_FIELDS", "MAX_CLOUD_POINTS", "MAX_SAMPLE_POINTS", "OceanNode",
+           "answer_sample"]
 
 #: Largest batch /ocean/sample_surface answers in one call.
 MAX_SAMPLE_POINTS = 100_000
@@ -63,6 +64,50 @@ _CLOUD_FIELDS = [
 ]
 
 
+def answer_sample(request: SampleSurface.Request, response: SampleSurface.Response,
+                  sea: WaveField | None, now: float, epoch: float | None, precision: str
+                  ) -> SampleSurface.Response:
+    """Fill ``response`` to ``request`` (/ocean/sample_surface), checks first.
+
+    Args:
+        request: the points and the stamp (zero = ``now``).
+        response: filled and returned.
+        sea: the sea state; None = none yet (refused).
+        now: s, the simulation time now.
+        epoch: s, the stamp of simulation time 0; None = not known yet (a stamped request
+            is refused).
+        precision: one of PRECISIONS.
+    """
+    n = len(request.points)
+    refusal = None
+    if n > MAX_SAMPLE_POINTS:
+        refusal = f"{n} points requested; at most {MAX_SAMPLE_POINTS} per call"
+    elif sea is None:
+        refusal = "no sea state yet (the ocean has not published /ocean/wave_field)"
+    elif epoch is None and (request.stamp.sec or request.stamp.nanosec):
+        refusal = ("the simulation has not started: its clock has no stamp yet (ask with a "
+                   "zero stamp for simulation time 0)")
+    if refusal is not None:
+        response.success, response.message = False, refusal
+        return response
+    xy = np.array([(p.x, p.y) for p in request.points], dtype=float).reshape(n, 2)
+    bad = np.flatnonzero(~np.all(np.isfinite(xy), axis=1))
+    if bad.size:
+        response.success = False
+        response.message = (f"points[{bad[0]}] = ({xy[bad[0], 0]}, {xy[bad[0], 1]}) is not "
+                            f"finite ({bad.size} non-finite points); nothing computed")
+        return response
+    stamp = request.stamp
+    t = now if stamp.sec == 0 and stamp.nanosec == 0 else time_to_seconds(stamp) - epoch
+    surface = sample(sea, xy, t, precision=precision)
+    response.success = True
+    response.message = ""
+    response.heights = surface.heights.tolist()
+    response.normals = vectors(surface.normals)
+    response.velocities = vectors(surface.velocities)
+    return response
+
+
 def _range(low: float, high: float) -> list[FloatingPointRange]:
     return [FloatingPointRange(from_value=low, to_value=high)]
 
@@ -81,12 +126,14 @@ class OceanNode(Node):
             None = one grid at the origin.
         environment: the current and the wind (:mod:`ocean_sim.ros.environment`); None =
             calm.
+        serve_surface: serve /ocean/sample_surface here; False when a surface server
+            (:mod:`ocean_sim.ros.surface_server`) serves it in a process of its own.
     """
 
     def __init__(self, sea: WaveField, now: Callable[[], float], epoch: float | None = 0.0,
                  tap: Tap | None = None,
                  surface_centers: Callable[[], np.ndarray] | None = None,
-                 environment: Environment | None = None) -> None:
+                 environment: Environment | None = None, serve_surface: bool = True) -> None:
         super().__init__("ocean")
         self._sea = sea
         self._now = now
@@ -113,11 +160,12 @@ class OceanNode(Node):
         self._field_pub = TappedPublisher(self, WaveFieldMsg, WAVE_FIELD, WAVE_FIELD_QOS, tap)
         self._cloud_pub = TappedPublisher(self, PointCloud2, SURFACE_CLOUD, SURFACE_QOS, tap)
         self._next_cloud_t = 0.0
-        self._service = self.create_service(SampleSurface, SAMPLE_SURFACE, self._on_sample)
+        self._service = (self.create_service(SampleSurface, SAMPLE_SURFACE, self._on_sample)
+                         if serve_surface else None)
         if epoch is not None:
             self.publish_wave_field()
         self.get_logger().info(f"{self._describe(sea)}; {describe(self.environment.environment)}"
-                               f"; serving {SAMPLE_SURFACE}")
+                               + (f"; serving {SAMPLE_SURFACE}" if serve_surface else ""))
 
     # ------------------------------------------------------------------ sea state
 
@@ -275,31 +323,6 @@ class OceanNode(Node):
 
     def _on_sample(self, request: SampleSurface.Request, response: SampleSurface.Response
                    ) -> SampleSurface.Response:
-        n = len(request.points)
-        if n > MAX_SAMPLE_POINTS:
-            response.success = False
-            response.message = f"{n} points requested; at most {MAX_SAMPLE_POINTS} per call"
-            return response
-        xy = np.array([(p.x, p.y) for p in request.points], dtype=float).reshape(n, 2)
-        bad = np.flatnonzero(~np.all(np.isfinite(xy), axis=1))
-        if bad.size:
-            response.success = False
-            response.message = (f"points[{bad[0]}] = ({xy[bad[0], 0]}, {xy[bad[0], 1]}) is not "
-                                f"finite ({bad.size} non-finite points); nothing computed")
-            return response
-        stamp = request.stamp
-        if self._epoch is None and (stamp.sec or stamp.nanosec):
-            response.success = False
-            response.message = ("the simulation has not started: its clock has no stamp yet "
-                                "(ask with a zero stamp for simulation time 0)")
-            return response
-        t = self._now() if stamp.sec == 0 and stamp.nanosec == 0 else (
-            time_to_seconds(stamp) - self._epoch)
-        surface = sample(self._sea, xy, t, precision=self.get_parameter("precision").value)
-        response.success = True
-        response.message = ""
-        response.heights = surface.heights.tolist()
-        response.normals = vectors(surface.normals)
-        response.velocities = vectors(surface.velocities)
-        return response
+        return answer_sample(request, response, self._sea, self._now(), self._epoch,
+                             self.get_parameter("precision").value)
 

@@ -1,0 +1,75 @@
+"""The surface server's inputs: /clock bytes, the ocean's parameter events, its sea state.
+
+No ROS graph: the callbacks are fed directly (the end-to-end answers are checked in
+tests/ros/test_end_to_end.py and test_ocean_node.py).
+"""
+
+import numpy as np
+import pytest
+import rclpy
+from boat_msgs.srv import SampleSurface
+from geometry_msgs.msg import Point
+from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterValue
+from rclpy.serialization import serialize_message
+from rosgraph_msgs.msg import Clock
+
+from boat_msgs_py.convert import seconds_to_time, wave_field_to_msg
+from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
+from ocean_sim.ros.surface_server import SurfaceServer
+
+SEA = WaveField(components=(WaveComponent(amplitude=0.4, wavelength=20.0, steepness=0.5),))
+XY = np.array([[1.0, 2.0], [-7.5, 3.25]])
+
+
+@pytest.fixture
+def server():
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    node = SurfaceServer(context=context)
+    yield node
+    node.destroy_node()
+    rclpy.try_shutdown(context=context)
+
+
+def _ask(server, t=None) -> SampleSurface.Response:
+    stamp = seconds_to_time(0.0) if t is None else seconds_to_time(100.0 + t)
+    request = SampleSurface.Request(stamp=stamp, points=[Point(x=x, y=y) for x, y in XY])
+    return server._on_sample(request, SampleSurface.Response())
+
+
+def test_no_service_and_no_answer_before_the_first_sea_state(server):
+    assert server._service is None
+    answer = _ask(server)
+    assert not answer.success and "no sea state yet" in answer.message
+
+
+def test_answers_from_the_published_sea_at_the_clock_time(server):
+    server._on_field(wave_field_to_msg(SEA, seconds_to_time(100.0)))  # epoch 100 s
+    assert server._service is not None
+    clock = Clock()
+    clock.clock.sec, clock.clock.nanosec = 42, 250_000_000
+    server._on_clock(serialize_message(clock))
+    assert server.now() == 42.25
+    now = _ask(server)
+    stamped = _ask(server, t=3.5)
+    assert np.array(now.heights) == pytest.approx(
+        sample_surface(SEA, XY, 42.25, precision="float32").heights, abs=1e-12)
+    assert np.array(stamped.heights) == pytest.approx(
+        sample_surface(SEA, XY, 3.5, precision="float32").heights, abs=1e-12)
+
+
+def test_follows_the_ocean_nodes_precision_only(server):
+    server._on_field(wave_field_to_msg(SEA, seconds_to_time(100.0)))
+
+    def event(node, value):
+        return ParameterEvent(node=node, changed_parameters=[Parameter(
+            name="precision", value=ParameterValue(type=4, string_value=value))])
+
+    server._on_parameters(event("/someone_else", "float64"))
+    assert server._precision == "float32"
+    server._on_parameters(event("/ocean", "float64"))
+    answer = _ask(server, t=1.0)
+    assert np.array(answer.heights) == pytest.approx(sample_surface(SEA, XY, 1.0).heights,
+                                                     abs=1e-15)
+    server._on_parameters(event("/ocean", "not-a-precision"))
+    assert server._precision == "float64"
