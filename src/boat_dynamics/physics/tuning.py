@@ -79,6 +79,9 @@ def equilibrium_height(params: BoatParams) -> float:
     side = 0
     z = 0.5 * (low + high)
     for _ in range(100):
+        if f_high == f_low:  # no slope to follow (a centre of mass lost in rounding)
+            raise ValueError("no equilibrium draft: the buoyancy does not change with the "
+                             "draft in double precision (a centre of mass far from the hull?)")
         z = (low * f_high - high * f_low) / (f_high - f_low)
         f = excess(z)
         if abs(f) <= 1e-10 * weight or high - low <= 1e-12 * params.hull.height:

@@ -218,3 +218,12 @@ def test_a_refusal_never_expands_a_large_value():
         parse_scenario({"boats": [{"mass": shared}]})
     assert err.value.key == "boats[0].mass"
     assert len(str(err.value)) < 500
+
+
+def test_a_centre_of_mass_far_from_the_hull_is_refused():
+    # found by the fuzzer: 4.5e15 m divided by zero in the equilibrium search
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"center_of_mass": [0.0, 0.0, 4.5e15]}]})
+    assert err.value.key == "boats[0].center_of_mass"
+    assert "within 10 hull sizes (40 m)" in err.value.allowed
+    assert parse_scenario({"boats": [{"center_of_mass": [0.0, 0.0, -39.0]}]}).boats

@@ -192,6 +192,12 @@ def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, Hull
     return BoxHull(*(float(e) for e in mesh.extents)), mesh
 
 
+#: How far the centre of mass may lie from the hull's reference point, in hull sizes (the
+#: largest extent): beyond, the hull's own numbers are lost in rounding (4.5e15 m divided by
+#: zero in the equilibrium search, found by tests/boat_dynamics/physics/test_scenario_fuzz.py).
+COM_REACH = 10.0
+
+
 def _mass_properties(d: Mapping[str, Any], key: str, sim: SimulationSettings, mesh: HullMesh
                      ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
     """The mass properties: kg, (3,) m, (3,) kg m^2 and (3,) kg m^2.
@@ -210,6 +216,11 @@ def _mass_properties(d: Mapping[str, Any], key: str, sim: SimulationSettings, me
         mass = number(d, "mass", key, 0.5 * sim.water_density * volume, 0.0, math.inf,
                        low_open=True, unit="kg")
     com = vector(d, "center_of_mass", key, 3, [0.0, 0.0, 0.0])
+    reach = COM_REACH * float(np.max(mesh.extents))
+    if np.any(np.abs(com) > reach):
+        raise ScenarioError(f"{key}.center_of_mass", d.get("center_of_mass"),
+                            f"must lie within {COM_REACH:g} hull sizes ({reach:.4g} m) of the "
+                            "hull's reference point in each axis (m)")
     inertia_raw = d.get("inertia")
     inertia = (mesh.solid_inertia(mass) if inertia_raw is None
                else vector(d, "inertia", key, 3, [1.0, 1.0, 1.0], low=0.0))

@@ -37,13 +37,18 @@ _SHORT.maxlevel, _SHORT.maxlist, _SHORT.maxtuple, _SHORT.maxdict = 3, 6, 6, 6
 _SHORT.maxstring, _SHORT.maxother, _SHORT.maxlong = 200, 200, 40
 
 
+#: The longest value shown in a message, characters.
+_SHORT_MAX = 300
+
+
 def shortened(value: object) -> str:
     """``repr(value)`` cut to a bounded size, however large or deep ``value`` is.
 
     At most a few hundred characters: a message never expands a huge or alias-shared
     structure (a YAML alias bomb's repr would be gigabytes).
     """
-    return _SHORT.repr(value)
+    text = _SHORT.repr(value)
+    return text if len(text) <= _SHORT_MAX else text[:_SHORT_MAX - 3] + "..."
 
 
 @dataclass(frozen=True)
