@@ -1,9 +1,12 @@
 """ROS end-to-end fixtures: an isolated domain, `boatsim` subprocesses, a probe node.
 
-Every test here runs on a ROS_DOMAIN_ID of its own (derived from the pytest process id) with
+Every test here runs on a ROS_DOMAIN_ID of its own (from the pytest process id and the
+test's place in the run: a process a test SIGKILLed stays listed on its domain for the DDS
+lease, 20 s, and a client of the next test could send its request to that ghost only) with
 ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, and stops every process it starts.
 """
 
+import itertools
 import os
 import signal
 import subprocess
@@ -23,6 +26,15 @@ import rclpy  # noqa: E402  (after the environment is set)
 from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 
 pytestmark = pytest.mark.ros
+
+#: Domains 101-231 (each a few UDP ports on localhost), one per test in turn.
+_DOMAINS = (101 + (os.getpid() * 7 + i) % 131 for i in itertools.count())
+
+
+@pytest.fixture(autouse=True)
+def own_domain(monkeypatch):
+    """A ROS_DOMAIN_ID of the test's own for its processes and probe."""
+    monkeypatch.setenv("ROS_DOMAIN_ID", str(next(_DOMAINS)))
 
 
 class Boatsim:

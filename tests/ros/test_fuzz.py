@@ -54,6 +54,14 @@ def _points(rng) -> list[Point]:
     return [Point(x=float(x), y=float(y), z=float(rng.choice(ODD_DOUBLES))) for x, y in xy]
 
 
+def _call(probe, client, request, what):
+    """probe.call, naming the request when it times out."""
+    try:
+        return probe.call(client, request, timeout=20.0)
+    except AssertionError as exc:
+        raise AssertionError(f"{exc}: {what}") from None
+
+
 def test_random_parameter_sets_and_requests_never_end_a_node(boatsim, probe):
     sim = boatsim("run", "--fast")
     odoms = []
@@ -72,11 +80,13 @@ def test_random_parameter_sets_and_requests_never_end_a_node(boatsim, probe):
             params = [ParameterMsg(name=str(rng.choice(known)), value=_value(rng))
                       for _ in range(int(rng.integers(1, 4)))]
             if i % 2:
-                answer = probe.call(atomic, SetParametersAtomically.Request(parameters=params))
+                answer = _call(probe, atomic, SetParametersAtomically.Request(parameters=params),
+                               (node, params))
                 assert answer is not None, (node, params)
                 outcomes[answer.result.successful] += 1
             else:
-                answer = probe.call(single, SetParameters.Request(parameters=params))
+                answer = _call(probe, single, SetParameters.Request(parameters=params),
+                               (node, params))
                 assert answer is not None and len(answer.results) == len(params), (node, params)
                 for result in answer.results:
                     outcomes[result.successful] += 1
@@ -86,7 +96,9 @@ def test_random_parameter_sets_and_requests_never_end_a_node(boatsim, probe):
     for _ in range(40):
         stamp = Time(sec=int(rng.choice([0, 1, -5, 2**31 - 1])),
                      nanosec=int(rng.choice([0, 999_999_999])))
-        answer = probe.call(surface, SampleSurface.Request(stamp=stamp, points=_points(rng)))
+        points = _points(rng)
+        answer = _call(probe, surface, SampleSurface.Request(stamp=stamp, points=points),
+                       (stamp, len(points)))
         assert answer is not None
         assert answer.success or answer.message
         answered[answer.success] += 1
