@@ -85,6 +85,7 @@ def _add_run(verbs) -> None:
     node.add_argument("--quiet", action="store_true")
     surface = verbs.add_parser("_surface")  # `run`'s surface server (ocean_sim.ros)
     surface.add_argument("--parent", type=int)
+    surface.add_argument("--time-file", required=True)
 
 
 def _add_query(verbs) -> None:
@@ -410,7 +411,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.verb == "_surface":
             from ocean_sim.ros.surface_server import serve
 
-            return serve(args.parent)
+            return serve(args.time_file, args.parent)
         if args.verb == "reindex":
             return _reindex(args.bag)
         if args.verb == "plot":

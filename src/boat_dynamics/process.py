@@ -9,11 +9,16 @@ before numpy loads: see :mod:`boat_dynamics.cli`.)
 from __future__ import annotations
 
 import ctypes
+import mmap
+import os
 import signal
+import struct
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
-__all__ = ["die_with_parent", "keep_freed_memory", "start_child"]
+__all__ = ["SharedTime", "die_with_parent", "keep_freed_memory", "start_child"]
 
 #: prctl option: the signal a process gets when its parent dies (linux/prctl.h).
 _PR_SET_PDEATHSIG = 1
@@ -65,3 +70,46 @@ def keep_freed_memory() -> bool:
     mallopt.restype = ctypes.c_int
     return bool(mallopt(_M_MMAP_THRESHOLD, MMAP_THRESHOLD)
                 and mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD))
+
+
+class SharedTime:
+    """One float64 (a time, s) in a memory-mapped file that another process reads.
+
+    The simulation writes its time every step (a store of 8 aligned bytes, atomic on the
+    machines ROS runs on, about 0.3 us); the surface server reads it when asked, with no
+    message per step (following /clock over DDS cost it a third of a core in --fast mode).
+
+    Args:
+        path: the file; None = create one in /dev/shm (or the temp directory), removed by
+            :meth:`close`, and open it for writing.
+    """
+
+    _FORMAT = struct.Struct("<d")
+
+    def __init__(self, path: str | Path | None = None) -> None:
+        self._owner = path is None
+        if self._owner:
+            shm = "/dev/shm" if os.path.isdir("/dev/shm") else None
+            fd, name = tempfile.mkstemp(prefix="boatsim-time-", dir=shm)
+            os.write(fd, bytes(self._FORMAT.size))
+            self.path = Path(name)
+        else:
+            self.path = Path(path)
+            fd = os.open(self.path, os.O_RDONLY)
+        access = mmap.ACCESS_WRITE if self._owner else mmap.ACCESS_READ
+        self._map = mmap.mmap(fd, self._FORMAT.size, access=access)
+        os.close(fd)
+
+    def write(self, t: float) -> None:
+        """Store ``t`` (s)."""
+        self._FORMAT.pack_into(self._map, 0, t)
+
+    def read(self) -> float:
+        """The stored time, s."""
+        return self._FORMAT.unpack_from(self._map, 0)[0]
+
+    def close(self) -> None:
+        """Unmap; the creator also removes the file."""
+        self._map.close()
+        if self._owner:
+            self.path.unlink(missing_ok=True)

@@ -29,7 +29,7 @@ from boat_dynamics.physics.boat import reference_pose
 from boat_dynamics.physics.pipeline import init_scenario
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import start_child
+from boat_dynamics.process import SharedTime, start_child
 from boat_dynamics.ros.node import DynamicsNode, SimClock, StartInterrupted
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
 from boat_msgs_py import names
@@ -269,6 +269,7 @@ class _Loop:
         self.dynamics = self.ocean = self.recorder = None
         self.parent: _Parent | None = None  # a --processes child's parent
         self.surface_server: subprocess.Popen | None = None
+        self.shared_time: SharedTime | None = None  # the simulation time, for the server
         self.abandoned = False  # the DDS endpoints are left to the process's exit
         self.logger = rclpy.logging.get_logger("boatsim")  # the first node's, once made
         self.nodes = []
@@ -287,7 +288,9 @@ class _Loop:
             self.nodes.append(self.dynamics)
         if options.role == "all":  # the surface service beside this process (module docs)
             # its own session: a terminal's Ctrl-C is this process's to handle
-            self.surface_server = start_child(["_surface", "--parent", str(os.getpid())],
+            self.shared_time = SharedTime()
+            self.surface_server = start_child(["_surface", "--parent", str(os.getpid()),
+                                               "--time-file", str(self.shared_time.path)],
                                               start_new_session=True)
         if options.role in ("all", "ocean"):
             self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
@@ -343,6 +346,8 @@ class _Loop:
                 self.clock.steps += 1
             if self.ocean is not None:
                 self.ocean.advance(self.clock.t)
+            if self.shared_time is not None:
+                self.shared_time.write(self.clock.t)
             self._serve_callbacks(wall0)
             if self.recorder is not None and time.monotonic() > next_discovery:
                 next_discovery = time.monotonic() + _DISCOVERY_PERIOD
@@ -472,3 +477,5 @@ class _Loop:
             except subprocess.TimeoutExpired:
                 self.surface_server.kill()
                 self.surface_server.wait()
+        if self.shared_time is not None:
+            self.shared_time.close()

@@ -8,7 +8,9 @@ The surface server (node ``ocean_surface``) answers from the same physics
 (:func:`ocean_sim.ros.node.answer_sample`) and the same inputs as the ocean node:
 
 - the sea state and the epoch from /ocean/wave_field (latched, stamped at simulation time 0);
-- the simulation time now: the latest /clock (``--fast``), else the wall clock minus the epoch;
+- the simulation time now: what the simulation writes every step into a shared 8-byte file
+  (``--time-file``; :class:`boat_dynamics.process.SharedTime`), so a zero-stamp request is
+  answered at the time the ocean node would have used, within a step;
 - ``precision``: the /ocean node's parameter, followed on /parameter_events.
 
 It ends on SIGINT or SIGTERM, when its stdin ends (the simulation's process died), or when
@@ -19,20 +21,18 @@ from __future__ import annotations
 
 import os
 import signal
-import struct
 import sys
 import threading
-import time
+from collections.abc import Callable
 
 from boat_msgs.msg import WaveField as WaveFieldMsg
 from boat_msgs.srv import SampleSurface
 from rcl_interfaces.msg import ParameterEvent
 from rclpy.node import Node
-from rosgraph_msgs.msg import Clock
 
 from boat_msgs_py.convert import time_to_seconds, wave_field_from_msg
-from boat_msgs_py.names import CLOCK, PARAMETER_EVENTS, SAMPLE_SURFACE, WAVE_FIELD
-from boat_msgs_py.qos import CLOCK_QOS, PARAMETER_EVENTS_QOS, WAVE_FIELD_QOS
+from boat_msgs_py.names import PARAMETER_EVENTS, SAMPLE_SURFACE, WAVE_FIELD
+from boat_msgs_py.qos import PARAMETER_EVENTS_QOS, WAVE_FIELD_QOS
 from ocean_sim.physics.waves import PRECISIONS, InvalidSeaStateError
 from ocean_sim.ros.node import answer_sample
 
@@ -48,18 +48,17 @@ class SurfaceServer(Node):
     """Serves /ocean/sample_surface from the ocean's published sea state and clock.
 
     Args:
+        now: returns the simulation time now, s.
         context: the rclpy context (None = the default one).
     """
 
-    def __init__(self, context=None) -> None:
+    def __init__(self, now: Callable[[], float], context=None) -> None:
         super().__init__(NODE_NAME, context=context)
+        self.now = now
         self._sea = None
         self._epoch: float | None = None
-        self._clock: float | None = None  # s of simulation time, from /clock
         self._precision = "float32"  # the ocean node's default
         self.create_subscription(WaveFieldMsg, WAVE_FIELD, self._on_field, WAVE_FIELD_QOS)
-        # raw: /clock comes every step in --fast mode; its 8 bytes of stamp are read directly
-        self.create_subscription(Clock, CLOCK, self._on_clock, CLOCK_QOS, raw=True)
         self.create_subscription(ParameterEvent, PARAMETER_EVENTS, self._on_parameters,
                                  PARAMETER_EVENTS_QOS)
         self._service = None  # offered once the first sea state is in: a client that found
@@ -78,24 +77,12 @@ class SurfaceServer(Node):
         self._epoch = time_to_seconds(msg.header.stamp)
         self._offer()
 
-    def _on_clock(self, data: bytes) -> None:
-        """A serialized rosgraph_msgs/Clock: CDR header, then int32 sec, uint32 nanosec."""
-        order = "<" if data[1] == 1 else ">"
-        sec, nanosec = struct.unpack_from(order + "iI", data, 4)
-        self._clock = sec + nanosec * 1e-9
-
     def _on_parameters(self, msg: ParameterEvent) -> None:
         if msg.node != _OCEAN_NODE:
             return
         for p in (*msg.new_parameters, *msg.changed_parameters):
             if p.name == "precision" and p.value.string_value in PRECISIONS:
                 self._precision = p.value.string_value
-
-    def now(self) -> float:
-        """The simulation time now, s: /clock's, or the wall clock's since the epoch."""
-        if self._clock is not None:
-            return self._clock
-        return max(time.time() - (self._epoch or time.time()), 0.0)
 
     def _on_sample(self, request: SampleSurface.Request, response: SampleSurface.Response
                    ) -> SampleSurface.Response:
@@ -113,8 +100,12 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def serve(parent: int | None = None) -> int:
+def serve(time_file: str, parent: int | None = None) -> int:
     """Run a :class:`SurfaceServer` until a signal, the end of stdin or ``parent``'s exit.
+
+    Args:
+        time_file: the simulation's :class:`boat_dynamics.process.SharedTime` file.
+        parent: pid of the simulation's process.
 
     Returns:
         The exit status, 0.
@@ -133,8 +124,11 @@ def serve(parent: int | None = None) -> int:
         stop.set()
 
     threading.Thread(target=watch_stdin, daemon=True).start()
+    from boat_dynamics.process import SharedTime
+
+    shared = SharedTime(time_file)
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-    node = SurfaceServer()
+    node = SurfaceServer(shared.read)
     executor = SingleThreadedExecutor()
     executor.add_node(node)
     try:
@@ -144,4 +138,5 @@ def serve(parent: int | None = None) -> int:
         executor.shutdown(timeout_sec=0.1)
         node.destroy_node()
         rclpy.try_shutdown()
+        shared.close()
     return 0

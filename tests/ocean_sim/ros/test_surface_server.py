@@ -1,4 +1,4 @@
-"""The surface server's inputs: /clock bytes, the ocean's parameter events, its sea state.
+"""The surface server's inputs: the shared time, the ocean's parameter events, its sea state.
 
 No ROS graph: the callbacks are fed directly (the end-to-end answers are checked in
 tests/ros/test_end_to_end.py and test_ocean_node.py).
@@ -10,9 +10,8 @@ import rclpy
 from boat_msgs.srv import SampleSurface
 from geometry_msgs.msg import Point
 from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterValue
-from rclpy.serialization import serialize_message
-from rosgraph_msgs.msg import Clock
 
+from boat_dynamics.process import SharedTime
 from boat_msgs_py.convert import seconds_to_time, wave_field_to_msg
 from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
 from ocean_sim.ros.surface_server import SurfaceServer
@@ -25,7 +24,7 @@ XY = np.array([[1.0, 2.0], [-7.5, 3.25]])
 def server():
     context = rclpy.Context()
     rclpy.init(context=context)
-    node = SurfaceServer(context=context)
+    node = SurfaceServer(lambda: 42.25, context=context)
     yield node
     node.destroy_node()
     rclpy.try_shutdown(context=context)
@@ -46,11 +45,7 @@ def test_no_service_and_no_answer_before_the_first_sea_state(server):
 def test_answers_from_the_published_sea_at_the_clock_time(server):
     server._on_field(wave_field_to_msg(SEA, seconds_to_time(100.0)))  # epoch 100 s
     assert server._service is not None
-    clock = Clock()
-    clock.clock.sec, clock.clock.nanosec = 42, 250_000_000
-    server._on_clock(serialize_message(clock))
-    assert server.now() == 42.25
-    now = _ask(server)
+    now = _ask(server)  # a zero stamp: the simulation's time now, 42.25 s
     stamped = _ask(server, t=3.5)
     assert np.array(now.heights) == pytest.approx(
         sample_surface(SEA, XY, 42.25, precision="float32").heights, abs=1e-12)
@@ -73,3 +68,19 @@ def test_follows_the_ocean_nodes_precision_only(server):
                                                      abs=1e-15)
     server._on_parameters(event("/ocean", "not-a-precision"))
     assert server._precision == "float64"
+
+
+def test_the_shared_time_is_read_in_another_process(tmp_path):
+    import subprocess
+    import sys
+
+    shared = SharedTime()
+    try:
+        shared.write(1234.5678)
+        read = subprocess.run([sys.executable, "-c", "import sys; from boat_dynamics.process "
+                               "import SharedTime; print(SharedTime(sys.argv[1]).read())",
+                               str(shared.path)], capture_output=True, text=True, check=True)
+        assert float(read.stdout) == 1234.5678
+    finally:
+        shared.close()
+    assert not shared.path.exists()
