@@ -74,8 +74,9 @@ def query_surface(points: list[tuple[float, float]], sim_time: float | None = No
         future = client.call_async(request)
         while not future.done():
             if time.monotonic() > deadline:
-                raise OceanUnavailableError(f"{SAMPLE_SURFACE} did not answer within "
-                                            f"{timeout:g} s")
+                raise OceanUnavailableError(
+                    f"{SAMPLE_SURFACE} did not answer within {timeout:g} s (a server killed "
+                    "in the last 20 s stays listed until its DDS lease runs out)")
             executor.spin_once(timeout_sec=0.05)
         return QueryResult(points, sim_time, future.result())
     finally:
