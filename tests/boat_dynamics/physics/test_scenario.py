@@ -227,3 +227,21 @@ def test_a_centre_of_mass_far_from_the_hull_is_refused():
     assert err.value.key == "boats[0].center_of_mass"
     assert "within 10 hull sizes (40 m)" in err.value.allowed
     assert parse_scenario({"boats": [{"center_of_mass": [0.0, 0.0, -39.0]}]}).boats
+
+
+def test_a_start_beyond_a_local_frame_is_refused():
+    # found by the fuzzer: x = 6e307 m overflowed in the physics
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"initial_pose": {"position": [6e307, 0.0, 0.0]}}]})
+    assert err.value.key == "boats[0].initial_pose.position"
+    assert "within +-1e+07 m" in err.value.allowed
+    assert parse_scenario({"boats": [{"initial_pose": {"position": [-9e6, 9e6, 0.0]}}]}).boats
+
+
+def test_a_hull_smaller_than_a_centimetre_is_refused():
+    # found by the fuzzer: a length of 5e-324 m stopped numpy's eigenvalue solver
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"hull": {"length": 5e-324}}]})
+    assert err.value.key == "boats[0].hull.length"
+    assert parse_scenario({"boats": [{"hull": {"length": 0.01, "beam": 0.01,
+                                               "height": 0.01}}]}).boats

@@ -157,6 +157,11 @@ def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
     return name
 
 
+#: The smallest hull extent, m: below, its mass properties lose their precision (a length
+#: of 5e-324 m stopped numpy's eigenvalue solver, found by test_scenario_fuzz.py).
+MIN_HULL_SIZE = 0.01
+
+
 def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, HullMesh]:
     """``hull``: a box (``length``, ``beam``, ``height``, ``subdivisions``) or a mesh file."""
     only(hd, hk, ("type", "length", "beam", "height", "subdivisions", "path", "scale"))
@@ -166,9 +171,9 @@ def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, Hull
             if extra in hd:
                 raise ScenarioError(f"{hk}.{extra}", hd[extra], "only for hull type mesh")
         hull = BoxHull(
-            length=number(hd, "length", hk, 4.0, 0.0, 1000.0, low_open=True, unit="m"),
-            beam=number(hd, "beam", hk, 2.0, 0.0, 1000.0, low_open=True, unit="m"),
-            height=number(hd, "height", hk, 1.0, 0.0, 1000.0, low_open=True, unit="m"),
+            length=number(hd, "length", hk, 4.0, MIN_HULL_SIZE, 1000.0, unit="m"),
+            beam=number(hd, "beam", hk, 2.0, MIN_HULL_SIZE, 1000.0, unit="m"),
+            height=number(hd, "height", hk, 1.0, MIN_HULL_SIZE, 1000.0, unit="m"),
         )
         subdivisions = hd.get("subdivisions", 1)
         if (isinstance(subdivisions, bool) or not isinstance(subdivisions, int)
@@ -189,6 +194,10 @@ def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, Hull
         mesh = load_mesh(str(full), scale)
     except HullMeshError as exc:
         raise ScenarioError(f"{hk}.path", path, str(exc)) from exc
+    if float(np.min(mesh.extents)) < MIN_HULL_SIZE:
+        raise ScenarioError(f"{hk}.scale", scale, f"the scaled hull must be at least "
+                            f"{MIN_HULL_SIZE:g} m in each direction (it is "
+                            f"{np.round(mesh.extents, 6).tolist()} m)")
     return BoxHull(*(float(e) for e in mesh.extents)), mesh
 
 
@@ -196,6 +205,11 @@ def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, Hull
 #: largest extent): beyond, the hull's own numbers are lost in rounding (4.5e15 m divided by
 #: zero in the equilibrium search, found by tests/boat_dynamics/physics/test_scenario_fuzz.py).
 COM_REACH = 10.0
+
+
+#: The farthest a boat may start from the world origin in each axis, m: 10,000 km, past any
+#: local frame (6e307 m overflowed in the physics, found by test_scenario_fuzz.py).
+MAX_POSITION = 1e7
 
 
 def _mass_properties(d: Mapping[str, Any], key: str, sim: SimulationSettings, mesh: HullMesh
@@ -316,9 +330,14 @@ def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
 
     At rest: :func:`boat_dynamics.physics.pipeline.init` sets it afloat in the waves.
     """
+    position = vector(idd, "position", ik, 3, [0.0, 0.0, 0.0])
+    if np.any(np.abs(position) > MAX_POSITION):
+        raise ScenarioError(f"{ik}.position", idd.get("position"),
+                            f"each coordinate must lie within +-{MAX_POSITION:g} m (the world "
+                            "frame is local, around simulation.datum)")
     return initial_state(
         params,
-        vector(idd, "position", ik, 3, [0.0, 0.0, 0.0]),
+        position,
         roll=math.radians(number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),
         pitch=math.radians(number(idd, "pitch_deg", ik, 0.0, -90.0, 90.0, unit="deg")),
         yaw=math.radians(number(idd, "yaw_deg", ik, 0.0, -360.0, 360.0, unit="deg")),
