@@ -84,7 +84,6 @@ def _add_run(verbs) -> None:
     node.add_argument("--duration", type=_positive_seconds)
     node.add_argument("--quiet", action="store_true")
     surface = verbs.add_parser("_surface")  # `run`'s surface server (ocean_sim.ros)
-    surface.add_argument("--parent", type=int)
     surface.add_argument("--time-file", required=True)
 
 
@@ -411,7 +410,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.verb == "_surface":
             from ocean_sim.ros.surface_server import serve
 
-            return serve(args.time_file, args.parent)
+            return serve(args.time_file)
         if args.verb == "reindex":
             return _reindex(args.bag)
         if args.verb == "plot":

@@ -16,9 +16,13 @@ import struct
 import subprocess
 import sys
 import tempfile
+import threading
+import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
-__all__ = ["SharedTime", "die_with_parent", "keep_freed_memory", "start_child"]
+__all__ = ["SharedTime", "die_with_parent", "keep_freed_memory", "start_child",
+           "stop_processes", "watch_stdin"]
 
 #: prctl option: the signal a process gets when its parent dies (linux/prctl.h).
 _PR_SET_PDEATHSIG = 1
@@ -37,6 +41,36 @@ def start_child(args: list[str], **popen) -> subprocess.Popen:
     """
     return subprocess.Popen([sys.executable, "-m", "boat_dynamics", *args],
                             stdin=subprocess.PIPE, preexec_fn=die_with_parent, **popen)
+
+
+def watch_stdin(stop: threading.Event, on_line: Callable[[str], None] | None = None) -> None:
+    """In a child of :func:`start_child`: a thread reading stdin.
+
+    It hands each line to ``on_line`` and sets ``stop`` when stdin ends (the parent died or
+    closed the pipe).
+    """
+    def listen() -> None:
+        for line in sys.stdin:
+            if on_line is not None:
+                on_line(line)
+        stop.set()
+
+    threading.Thread(target=listen, daemon=True, name="boatsim-stdin").start()
+
+
+def stop_processes(processes: Sequence[subprocess.Popen], sig: int = signal.SIGINT,
+                   timeout: float = 10.0) -> None:
+    """Send ``sig`` to those still running; kill any that outlives ``timeout`` (s, shared)."""
+    running = [p for p in processes if p.poll() is None]
+    for p in running:
+        p.send_signal(sig)
+    deadline = time.monotonic() + timeout
+    for p in running:
+        try:
+            p.wait(timeout=max(deadline - time.monotonic(), 0.01))
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.wait()
 
 #: glibc mallopt parameters (malloc.h).
 _M_TRIM_THRESHOLD = -1

@@ -24,12 +24,12 @@ import signal
 import subprocess
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import start_child
+from boat_dynamics.process import start_child, stop_processes
 from boat_dynamics.ros.runner import RunOptions
 from boat_dynamics.tools.recording import RecordError
 
@@ -52,7 +52,6 @@ class _Child:
     proc: subprocess.Popen | None = None
     ready_fd: int | None = None  # read end of its ready pipe, until it said ready
     status: int | None = None  # its exit status, once it exited
-    lines: list[bytes] = field(default_factory=list)
 
 
 def _spawn(child: _Child, handshake: bool) -> None:
@@ -172,20 +171,6 @@ def _watch(children: list[_Child], epoch: float, stopping, status: TextIO) -> bo
     return died
 
 
-def _stop(children: list[_Child], sig: int = signal.SIGINT, timeout: float = 10.0) -> None:
-    """Send ``sig`` to the children still running; kill those that outlive ``timeout``."""
-    running = [c.proc for c in children if c.proc is not None and c.proc.poll() is None]
-    for p in running:
-        p.send_signal(sig)
-    deadline = time.monotonic() + timeout
-    for p in running:
-        try:
-            p.wait(timeout=max(deadline - time.monotonic(), 0.01))
-        except subprocess.TimeoutExpired:
-            p.kill()
-            p.wait()
-
-
 def run_processes(scenario: Scenario, path: str, options: RunOptions,
                   status: TextIO = sys.stderr) -> int:
     """Run ``scenario`` (read from ``path``) as one process per node; returns the exit status.
@@ -220,18 +205,18 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
             for sig in signals[forwarded:]:
                 for c in children:
                     if c.proc.poll() is None:
-                        c.proc.send_signal(signal.SIGINT if sig == signal.SIGINT else sig)
+                        c.proc.send_signal(sig)
             forwarded = len(signals)
             return bool(signals)
 
         died = _watch(children, epoch, stopping, status)
-        _stop(children[:1], signal.SIGINT)  # the ocean, when it runs with no duration
+        stop_processes([children[0].proc])  # the ocean, when it runs with no duration
         ok = all(c.status in (0, None) for c in children) and not died
         return 0 if ok else 1
     finally:
-        _stop(children)
+        stop_processes([c.proc for c in children if c.proc is not None])
         if recorder is not None:
-            _stop([_Child("recorder", [], proc=recorder)], signal.SIGINT, timeout=30.0)
+            stop_processes([recorder], timeout=30.0)
             print(f"boatsim: recorded to {options.record}", file=status)
         for sig, handler in previous.items():
             signal.signal(sig, handler)

@@ -29,7 +29,7 @@ from boat_dynamics.physics.boat import reference_pose
 from boat_dynamics.physics.pipeline import init_scenario
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import SharedTime, start_child
+from boat_dynamics.process import SharedTime, start_child, stop_processes, watch_stdin
 from boat_dynamics.ros.node import DynamicsNode, SimClock, StartInterrupted
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
 from boat_msgs_py import names
@@ -227,16 +227,13 @@ class _Parent:
     def __init__(self, stop: threading.Event) -> None:
         self.epoch: float | None = None
         self.go = threading.Event()
-        threading.Thread(target=self._listen, args=(stop,), daemon=True,
-                         name="boatsim-parent").start()
+        watch_stdin(stop, self._on_line)  # stdin's end: the parent is gone, end cleanly
 
-    def _listen(self, stop: threading.Event) -> None:
-        for line in sys.stdin:
-            words = line.split()
-            if len(words) == 2 and words[0] == "go":
-                self.epoch = float(words[1])
-                self.go.set()
-        stop.set()  # the parent is gone (or closed the pipe): end cleanly
+    def _on_line(self, line: str) -> None:
+        words = line.split()
+        if len(words) == 2 and words[0] == "go":
+            self.epoch = float(words[1])
+            self.go.set()
 
 
 def _recorded(node, publisher) -> bool:
@@ -289,8 +286,8 @@ class _Loop:
         if options.role == "all":  # the surface service beside this process (module docs)
             # its own session: a terminal's Ctrl-C is this process's to handle
             self.shared_time = SharedTime()
-            self.surface_server = start_child(["_surface", "--parent", str(os.getpid()),
-                                               "--time-file", str(self.shared_time.path)],
+            self.surface_server = start_child(["_surface", "--time-file",
+                                               str(self.shared_time.path)],
                                               start_new_session=True)
         if options.role in ("all", "ocean"):
             self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
@@ -470,12 +467,7 @@ class _Loop:
                 self.executor.remove_node(n)
                 n.destroy_node()
         self.executor.shutdown(timeout_sec=0.1)
-        if self.surface_server is not None and self.surface_server.poll() is None:
-            self.surface_server.terminate()  # quiet even while it is still importing
-            try:
-                self.surface_server.wait(timeout=2.0)
-            except subprocess.TimeoutExpired:
-                self.surface_server.kill()
-                self.surface_server.wait()
+        if self.surface_server is not None:  # SIGTERM: quiet even while it still imports
+            stop_processes([self.surface_server], signal.SIGTERM, timeout=2.0)
         if self.shared_time is not None:
             self.shared_time.close()

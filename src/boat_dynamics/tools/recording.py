@@ -56,7 +56,7 @@ def _bag_qos(profile: QoSProfile):
 class BagWriter:
     """A rosbag2 bag with MCAP storage, written from serialized (CDR) messages.
 
-    Crash-safe: a chunk is written out once it spans one second of bag time
+    Crash-safe: a chunk is written out once it spans half a second of bag time
     (:class:`boat_dynamics.tools.bagfile.JazzyWriter`); call :meth:`flush_due` when no message
     may come for a while.
 
@@ -104,7 +104,7 @@ class BagWriter:
         self.counts[topic] += 1
 
     def flush_due(self, now_ns: int) -> None:
-        """Write out the pending chunk if it is a second older than ``now_ns`` (bag time)."""
+        """Write out the pending chunk if it is CHUNK_SPAN_NS (0.5 s) older than ``now_ns``."""
         if not self._closed:
             self._writer.flush_due(now_ns)
 

@@ -13,15 +13,13 @@ The surface server (node ``ocean_surface``) answers from the same physics
   answered at the time the ocean node would have used, within a step;
 - ``precision``: the /ocean node's parameter, followed on /parameter_events.
 
-It ends on SIGINT or SIGTERM, when its stdin ends (the simulation's process died), or when
-the simulation's process is gone (``--parent PID``).
+It ends on SIGINT or SIGTERM, or when its stdin ends (the simulation's process died; on
+Linux it also gets SIGTERM then).
 """
 
 from __future__ import annotations
 
-import os
 import signal
-import sys
 import threading
 from collections.abc import Callable
 
@@ -90,22 +88,11 @@ class SurfaceServer(Node):
                              self._precision)
 
 
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
-def serve(time_file: str, parent: int | None = None) -> int:
-    """Run a :class:`SurfaceServer` until a signal, the end of stdin or ``parent``'s exit.
+def serve(time_file: str) -> int:
+    """Run a :class:`SurfaceServer` until a signal or the end of stdin (the run is gone).
 
     Args:
         time_file: the simulation's :class:`boat_dynamics.process.SharedTime` file.
-        parent: pid of the simulation's process.
 
     Returns:
         The exit status, 0.
@@ -118,13 +105,9 @@ def serve(time_file: str, parent: int | None = None) -> int:
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: stop.set())
 
-    def watch_stdin() -> None:
-        for _ in sys.stdin:
-            pass
-        stop.set()
+    from boat_dynamics.process import SharedTime, watch_stdin
 
-    threading.Thread(target=watch_stdin, daemon=True).start()
-    from boat_dynamics.process import SharedTime
+    watch_stdin(stop)
 
     shared = SharedTime(time_file)
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
@@ -132,7 +115,7 @@ def serve(time_file: str, parent: int | None = None) -> int:
     executor = SingleThreadedExecutor()
     executor.add_node(node)
     try:
-        while not stop.is_set() and (parent is None or _alive(parent)):
+        while not stop.is_set():
             executor.spin_once(timeout_sec=0.1)
     finally:
         executor.shutdown(timeout_sec=0.1)
