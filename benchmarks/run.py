@@ -1,7 +1,8 @@
 """boatsim benchmarks (`make bench`): prints figures, asserts nothing.
 
 Wave queries (heights + normals + velocities, inversion included), the boat step, and the
-real-time factor of `boatsim run --fast` (in-process, no subscribers).
+real-time factor of `boatsim run --fast` (in-process, no subscribers), and the same run in one
+process against shards (`--shards N`, subprocesses as a user starts them).
 """
 
 from __future__ import annotations
@@ -249,11 +250,81 @@ def bench_phases(seconds: float, boats: int) -> None:
         print(f"    {label:<24} {total / steps * 1e6:8.1f} us")
 
 
+def _fleet_file(boats: int, model: str, folder: Path) -> Path:
+    """A scenario file of ``boats`` default boxes (``model``: their buoyancy model)."""
+    import yaml
+
+    data = _fleet(boats)
+    if model != "mesh":
+        for b in data["boats"]:
+            b["buoyancy"] = {"model": model}
+    path = folder / f"fleet_{boats}_{model}.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return path
+
+
+def _timed_cli(args: list[str]) -> tuple[float, float, float]:
+    """Run ``boatsim ARGS``; (loop real-time factor, s to the first step, s in all).
+
+    The loop factor is the run's last status line (the first dynamics process's, counted
+    from its first step); the start is when that process logs "running".
+    """
+    import re
+    import subprocess
+    import sys
+
+    t0 = time.perf_counter()
+    proc = subprocess.Popen([sys.executable, "-m", "boat_dynamics", *args],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    started = math.nan
+    lines = []
+    for line in proc.stderr:
+        lines.append(line)
+        if math.isnan(started) and "running " in line and "boat(s)" in line:
+            started = time.perf_counter() - t0
+    proc.wait()
+    total = time.perf_counter() - t0
+    factors = re.findall(r"t\s+[\d.]+ s\s+x\s*([\d.]+)", "".join(lines))
+    if proc.returncode != 0 or not factors:
+        raise RuntimeError(f"boatsim {' '.join(args)} failed:\n{''.join(lines[-20:])}")
+    return float(factors[-1]), started, total
+
+
+def bench_scale(seconds: float) -> None:
+    """One process against shards: `boatsim run --fast` as a user starts it (subprocesses).
+
+    Figures per configuration: the loop's real-time factor (best and range of 2), the
+    seconds from launch to the first step, and the throughput ratio of the best loops.
+    """
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        for boats, model, sim_s, shard_counts in ((10, "mesh", seconds, (1, 2)),
+                                                   (100, "mesh", seconds / 4, (1, 2)),
+                                                   (1000, "sample_points", 2.0, (1, 2))):
+            path = _fleet_file(boats, model, Path(tmp))
+            best = {}
+            for shards in (0, *shard_counts):
+                extra = ["--shards", str(shards)] if shards else []
+                runs = [_timed_cli(["run", str(path), "--fast", "--duration", str(sim_s),
+                                    *extra]) for _ in range(2 if boats < 1000 else 1)]
+                loops = [r[0] for r in runs]
+                best[shards] = max(loops)
+                where = f"{shards} shard(s)" if shards else "one process"
+                print(f"  {boats:>4} {model} boats, {where:<12}: real-time factor "
+                      f"{max(loops):6.2f} (loop; range {min(loops):.2f}-{max(loops):.2f}), "
+                      f"first step after {min(r[1] for r in runs):5.1f} s, "
+                      f"{min(r[2] for r in runs):5.1f} s in all")
+            for shards in shard_counts:
+                print(f"  {boats:>4} boats: {shards} shard(s) / one process throughput "
+                      f"{best[shards] / best[0]:.2f}")
+
+
 def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--run-seconds", type=float, default=20.0)
-    parser.add_argument("--only", choices=("waves", "boat", "run", "phases"),
+    parser.add_argument("--only", choices=("waves", "boat", "run", "phases", "scale"),
                         help="one group only")
     args = parser.parse_args()
     if args.only in (None, "waves"):
@@ -268,6 +339,9 @@ def main() -> None:
     if args.only in (None, "phases"):
         print("== where a step goes, boatsim run --fast with 10 mesh boats")
         bench_phases(args.run_seconds / 2, 10)
+    if args.only in (None, "scale"):
+        print("== boatsim run --fast in processes: one process against --shards N")
+        bench_scale(args.run_seconds / 2)
 
 
 if __name__ == "__main__":

@@ -34,6 +34,29 @@ def _positive_seconds(text: str) -> float:
     return value
 
 
+def _shard(text: str) -> tuple[int, int]:
+    """``K/N`` of ``--only shard K/N``: shard K (0 .. N - 1) of N."""
+    k, _, n = text.partition("/")
+    try:
+        index, count = int(k), int(n)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not K/N (shard K of N, "
+                                         "e.g. 0/2)") from None
+    if not 0 <= index < count:
+        raise argparse.ArgumentTypeError(f"{text!r}: K must be 0 .. N - 1 (e.g. 0/2 and 1/2)")
+    return index, count
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be at least 1")
+    return value
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="boatsim", description="ROS 2 simulation of boats on Gerstner waves.")
@@ -69,15 +92,27 @@ def _add_run(verbs) -> None:
     run.add_argument("--lockstep", action="store_true",
                      help="with --fast: advance only as far as `boatsim replay` grants, so a "
                           "replay gives the same result on any machine")
-    run.add_argument("--processes", action="store_true",
-                     help="run the ocean and each boat's dynamics in processes of their own "
-                          "(real time only; --record adds a recorder process)")
+    spread = run.add_mutually_exclusive_group()
+    spread.add_argument("--processes", action="store_true",
+                        help="run the ocean and each boat's dynamics in processes of their own")
+    spread.add_argument("--shards", type=_count, metavar="N",
+                        help="spread the boats over N dynamics processes, each stepping its "
+                             "share as one fleet, and the ocean in a process of its own")
+    run.add_argument("--only", nargs="+", metavar="ROLE",
+                     help="start one process of a sharded run alone (on this or another "
+                          "machine, same ROS_DOMAIN_ID): `ocean` (with --shards N: it owns "
+                          "the clock) or `shard K/N`; with --fast")
     # Internal (the --processes children). A sub-parser added without help= stays out of the
     # verb list; help=argparse.SUPPRESS would print "_node ==SUPPRESS==" there.
     node = verbs.add_parser("_node")
-    node.add_argument("role", choices=("ocean", "boat"))
+    node.add_argument("role", choices=("ocean", "shard"))
     node.add_argument("scenario")
-    node.add_argument("--boat", default="")
+    node.add_argument("--shard", type=_shard)  # a shard's K/N
+    node.add_argument("--shards", type=int, default=0)  # the ocean: the clock of N shards
+    node.add_argument("--fast", action="store_true")
+    node.add_argument("--lockstep", action="store_true")
+    node.add_argument("--record")  # fast: this process's part of the bag
+    node.add_argument("--exclude-topics", nargs="+", default=[])
     node.add_argument("--epoch", type=float)  # joining a run (a restarted ocean)
     node.add_argument("--ready-fd", type=int)  # the start-up handshake (see runner.RunOptions)
     node.add_argument("--await-recorder", action="store_true")
@@ -305,6 +340,7 @@ def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
     from boat_dynamics.physics.pipeline import InitError, start
     from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
 
@@ -319,20 +355,30 @@ def _run(args: argparse.Namespace) -> int:
             print("boatsim _node: error: exactly one of --epoch and --ready-fd",
                   file=sys.stderr)
             return 2
-        options = RunOptions(duration=args.duration, role=args.role, boat=args.boat,
+        options = RunOptions(duration=args.duration, role=args.role, shard=args.shard,
+                             shards=args.shards, fast=args.fast, lockstep=args.lockstep,
+                             record=args.record, exclude_topics=tuple(args.exclude_topics),
                              epoch=args.epoch, ready_fd=args.ready_fd, supervised=True,
                              await_recorder=args.await_recorder)
         try:
             return run(scenario, options, status=open(os.devnull, "w") if args.quiet
                        else sys.stderr)
         except InitError as exc:
-            names = [b.name for b in scenario.boats]
-            return _refuse_boat(path, exc, names.index(args.boat) if args.boat in names else 0)
-    if args.processes:
-        if args.fast or args.lockstep or not scenario.simulation.realtime:
-            print("boatsim: error: --processes runs in real time, without --fast or --lockstep "
-                  "(one simulation clock across processes is not implemented yet)",
-                  file=sys.stderr)
+            first = 0 if args.shard is None else shard_slice(*args.shard,
+                                                             len(scenario.boats)).start
+            return _refuse_boat(path, exc, first + exc.boat)
+    if args.lockstep and not args.fast:
+        print("boatsim: error: --lockstep needs --fast (a real-time run follows the wall "
+              "clock)", file=sys.stderr)
+        return 2
+    fast = args.fast or not scenario.simulation.realtime
+    if args.only:
+        return _run_only(args, scenario, path, fast)
+    if args.processes or args.shards:
+        count = len(scenario.boats) if args.processes else args.shards
+        if count > len(scenario.boats):
+            print(f"boatsim: error: --shards {count}: the scenario has "
+                  f"{len(scenario.boats)} boat(s); at most one shard per boat", file=sys.stderr)
             return 2
         from boat_dynamics.ros.processes import run_processes
 
@@ -342,15 +388,11 @@ def _run(args: argparse.Namespace) -> int:
             return _refuse_boat(path, exc, exc.boat)
         try:
             return run_processes(scenario, str(path), RunOptions(
-                duration=args.duration, record=args.record,
-                exclude_topics=tuple(args.exclude_topics)))
+                duration=args.duration, record=args.record, fast=fast, lockstep=args.lockstep,
+                shards=count, exclude_topics=tuple(args.exclude_topics)))
         except RecordError as exc:
             print(f"boatsim: error: {exc}", file=sys.stderr)
             return 2
-    if args.lockstep and not args.fast:
-        print("boatsim: error: --lockstep needs --fast (a real-time run follows the wall "
-              "clock)", file=sys.stderr)
-        return 2
     try:
         return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
                                         record=args.record, lockstep=args.lockstep,
@@ -360,6 +402,53 @@ def _run(args: argparse.Namespace) -> int:
         return 2
     except InitError as exc:
         return _refuse_boat(path, exc, exc.boat)
+
+
+def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
+    """``run --only ocean | shard K/N``: one process of a sharded run, started alone."""
+    from boat_dynamics.physics.pipeline import InitError
+    from boat_dynamics.ros.barrier import shard_slice
+    from boat_dynamics.ros.runner import RunOptions, run
+    from boat_dynamics.tools.recording import RecordError
+
+    def refuse(message: str) -> int:
+        print(f"boatsim: error: --only {' '.join(args.only)}: {message}", file=sys.stderr)
+        return 2
+
+    if not fast:
+        return refuse("the processes of a run started apart share its clock through the "
+                      "step barrier: add --fast (and --lockstep to follow a replay)")
+    if args.processes:
+        return refuse("--processes starts every process itself; use --shards N")
+    role, rest = args.only[0], args.only[1:]
+    if role == "ocean" and not rest:
+        if not args.shards:
+            return refuse("add --shards N: the ocean owns the clock of N shards")
+        shard, shards = None, args.shards
+    elif role == "shard" and len(rest) == 1:
+        try:
+            shard = _shard(rest[0])
+        except argparse.ArgumentTypeError as exc:
+            return refuse(str(exc))
+        shards = 0
+        if args.shards not in (None, shard[1]):
+            return refuse(f"--shards {args.shards} and shard {rest[0]} disagree")
+    else:
+        return refuse("expected `ocean` or `shard K/N`")
+    count = shard[1] if shard else shards
+    if count > len(scenario.boats):
+        return refuse(f"{count} shards for {len(scenario.boats)} boat(s); at most one per boat")
+    options = RunOptions(role=role, shard=shard, shards=shards, fast=True,
+                         lockstep=args.lockstep, duration=args.duration, record=args.record,
+                         exclude_topics=tuple(args.exclude_topics), standalone=True)
+    try:
+        return run(scenario, options)
+    except RecordError as exc:
+        print(f"boatsim: error: {exc}", file=sys.stderr)
+        return 2
+    except InitError as exc:
+        first = shard_slice(*shard, len(scenario.boats)).start if shard else 0
+        return _refuse_boat(path, exc, first + exc.boat)
 
 
 def _reindex(bag: str) -> int:

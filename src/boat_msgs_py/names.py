@@ -19,6 +19,8 @@ __all__ = [
     "RECORDER_NODE",
     "ROSOUT",
     "SAMPLE_SURFACE",
+    "STEP_DONE",
+    "STEP_GRANT",
     "SURFACE_CLOUD",
     "TF",
     "TF_STATIC",
@@ -64,6 +66,13 @@ CLOCK = "/clock"
 #: std_msgs/Float64MultiArray [T, n]: a replayer's grant "advance while t < T; I have sent n
 #: command messages" (``boatsim run --fast --lockstep`` obeys it).
 LOCKSTEP = "/boatsim/lockstep"
+#: std_msgs/UInt64, latched: the step barrier's grant "a dynamics process may step while its
+#: step count is below this" (``run --fast`` over several processes: the clock owner, in the
+#: ocean's process, publishes it).
+STEP_GRANT = "/boatsim/step_grant"
+#: std_msgs/UInt64MultiArray [K, N, steps, commands]: dynamics process K of N has taken
+#: ``steps`` steps and received ``commands`` command messages (its report to the barrier).
+STEP_DONE = "/boatsim/step_done"
 #: diagnostic_msgs/DiagnosticArray, one status per boat.
 DIAGNOSTICS = "/diagnostics"
 

@@ -23,6 +23,8 @@ __all__ = [
     "RECORD_QOS",
     "SENSOR_QOS",
     "STATE_QOS",
+    "STEP_DONE_QOS",
+    "STEP_GRANT_QOS",
     "SURFACE_QOS",
     "TF_QOS",
     "TF_STATIC_QOS",
@@ -82,6 +84,14 @@ TF_STATIC_QOS = QoSProfile(
 SENSOR_QOS = STATE_QOS
 #: /parameter_events, as rclpy publishes it (reliable, last 1000, volatile).
 PARAMETER_EVENTS_QOS = qos_profile_parameter_events
+#: /boatsim/step_grant: reliable, transient-local, last 1 (a late dynamics process gets the
+#: current grant; each grant replaces the one before).
+STEP_GRANT_QOS = WAVE_FIELD_QOS
+#: /boatsim/step_done: reliable, last 100 (reports are cumulative: the latest is what counts).
+STEP_DONE_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=100,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)
 #: A recorder's subscriptions: reliable, a deep queue (a busy recorder must not drop).
 RECORD_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
 

@@ -397,10 +397,10 @@ def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
     assert "started 4 processes" in out and "Traceback" not in out
 
 
-def test_processes_refuses_fast_and_an_existing_bag(boatsim, tmp_path):
-    sim = boatsim("run", "--processes", "--fast")
+def test_processes_refuses_shards_too_and_an_existing_bag(boatsim, tmp_path):
+    sim = boatsim("run", "--processes", "--shards", "1")
     assert sim.wait(timeout=30) == 2
-    assert "--processes runs in real time" in sim.output()
+    assert "not allowed with argument --processes" in sim.output()
     sim = boatsim("run", "--processes", "--record", str(tmp_path))
     assert sim.wait(timeout=30) == 2
     assert f"{tmp_path} already exists" in sim.output() and "Traceback" not in sim.output()

@@ -1,25 +1,40 @@
-"""`boatsim run --processes`: the ocean and each boat's dynamics node in a process of its own.
+"""`boatsim run --processes | --shards N`: the ocean and the boats' dynamics in processes.
 
-Start-up is a handshake, not a delay. Every child builds its nodes, waits (with ``--record``)
-until the recorder has subscribed to each of its publishers, and says "ready" on a pipe; once
-all are ready the parent sends each the epoch (the wall-clock time of simulation time 0, a
-moment ahead) on its stdin, and they start on it, paced to real time. A child that falls
-behind catches up (it steps without waiting until it is on time), so no simulation time is
-skipped and the bag holds every step from 0.
+``--processes`` gives each boat a dynamics process of its own; ``--shards N`` spreads the
+boats over N, each stepping its share as one fleet. The ocean has a process of its own.
+
+Start-up is a handshake, not a delay. Every child builds its nodes, waits (real time with
+``--record``) until the recorder has subscribed to each of its publishers, and says "ready"
+on a pipe; once all are ready the parent sends each the epoch on its stdin ("go EPOCH").
+
+Time. In real time the epoch is the wall-clock time of simulation time 0, a moment ahead, and
+every process paces itself to it; a child that falls behind catches up (it steps without
+waiting until it is on time), so no simulation time is skipped. With ``--fast`` (and
+``--lockstep``) the ocean's process owns the clock: the step barrier
+(:mod:`boat_dynamics.ros.barrier`) grants the steps, so every process is at the same
+simulation time within a few steps and /clock comes from one place.
+
+Recording. In real time a recorder process (``boatsim record``) subscribes to every topic.
+With ``--fast`` every process records what it publishes (and the ocean's what the others
+publish, such as /rosout) into a bag of its own beside the target, and the parent merges them
+into one when the run ends (:func:`boat_dynamics.tools.bagfile.merge`): a subscriber could not
+keep up with processes running flat out.
 
 Supervision: the children die with the parent (SIGTERM on its death on Linux, and the end of
 their stdin everywhere); the parent reports a child that dies (which one, how); a dead ocean
 is restarted and joins at the current simulation time with the scenario's sea state (the
-boats keep the last sea state they had meanwhile: they need no ocean to step); a dead boat is
-not (its state is gone). The run's exit status is 1 when any child died. SIGINT and SIGTERM
+boats keep the last sea state they had meanwhile: they need no ocean to step); a dead
+dynamics process is not (its state is gone), and with ``--fast`` the run stops, as the others
+would wait for it forever. The run's exit status is 1 when any child died. SIGINT and SIGTERM
 are forwarded; the recorder is stopped (its bag finalized) after the simulation's processes.
-Only the first boat's process shows the status line.
+Only the first dynamics process shows the status line.
 """
 
 from __future__ import annotations
 
 import os
 import select
+import shutil
 import signal
 import subprocess
 import sys
@@ -30,6 +45,7 @@ from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
 from boat_dynamics.process import start_child, stop_processes
+from boat_dynamics.ros.barrier import shard_slice
 from boat_dynamics.ros.runner import RunOptions
 from boat_dynamics.tools.recording import RecordError
 
@@ -68,14 +84,36 @@ def _spawn(child: _Child, handshake: bool) -> None:
         os.close(write_fd)
 
 
-def _children(scenario: Scenario, path: str, options: RunOptions) -> list[_Child]:
-    """The ocean's child and each boat's, with their ``_node`` arguments (no epoch yet)."""
+def _children(scenario: Scenario, path: str, options: RunOptions,
+              parts: Path | None) -> list[_Child]:
+    """The ocean's child and each shard's, with their ``_node`` arguments (no epoch yet).
+
+    Args:
+        scenario: the scenario (its boats are shared out).
+        path: its file, which every child reads.
+        options: how to run (``shards``, ``fast``, ``lockstep``, ``record``, ...).
+        parts: with ``--fast --record``: the directory of each process's bag.
+    """
     common = [path, *(["--duration", repr(options.duration)] if options.duration else [])]
-    common += ["--await-recorder"] if options.record else []
-    out = [_Child("ocean", ["ocean", *common, "--quiet"])]
-    for i, boat in enumerate(scenario.boats):
-        out.append(_Child(f"boat {boat.name or '(root)'}",
-                          ["boat", *common, "--boat", boat.name, *(["--quiet"] if i else [])]))
+    if options.fast:
+        common += ["--fast", *(["--lockstep"] if options.lockstep else [])]
+        if options.exclude_topics:
+            common += ["--exclude-topics", *options.exclude_topics]
+    elif options.record:
+        common += ["--await-recorder"]
+
+    def part(name: str) -> list[str]:
+        return ["--record", str(parts / name)] if parts is not None else []
+
+    count = options.shards
+    out = [_Child("ocean", ["ocean", *common, *part("ocean"), "--quiet",
+                            *(["--shards", str(count)] if options.fast else [])])]
+    for k in range(count):
+        boats = scenario.boats[shard_slice(k, count, len(scenario.boats))]
+        label = (f"boat {boats[0].name or '(root)'}" if len(boats) == 1
+                 else f"shard {k}/{count}")
+        out.append(_Child(label, ["shard", *common, *part(f"shard-{k}"), "--shard",
+                                  f"{k}/{count}", *(["--quiet"] if k else [])]))
     return out
 
 
@@ -132,22 +170,41 @@ def _go(children: list[_Child], epoch: float) -> None:
             pass  # died meanwhile: the watch reports it
 
 
-def _watch(children: list[_Child], epoch: float, stopping, status: TextIO) -> bool:
-    """Until every boat's process has exited: report deaths, restart the ocean.
+def _restart_ocean(ocean: _Child, epoch: float, status: TextIO) -> None:
+    """Start a dead ocean again, joining the run at ``epoch`` (no handshake)."""
+    ocean.status = None
+    args = [a for a in ocean.args if a != "--await-recorder"]
+    if "--epoch" not in args:
+        args += ["--epoch", repr(epoch)]
+    if "--record" in args:  # a fresh part: the dead one's stays and is merged too
+        i = args.index("--record") + 1
+        args[i] = f"{args[i]}+"
+    ocean.args = args
+    _spawn(ocean, handshake=False)
+    print(f"boatsim: restarted the ocean (pid {ocean.proc.pid}); it joins at the current "
+          "simulation time with the scenario's sea state; the boats keep the last sea state "
+          "they had meanwhile", file=status)
+
+
+def _watch(children: list[_Child], epoch: float, stopping, status: TextIO,
+           barrier: bool) -> bool:
+    """Until every dynamics process has exited: report deaths, restart the ocean.
 
     Args:
         children: the ocean's child first.
         epoch: s, wall-clock time of simulation time 0 (a restarted ocean joins on it).
         stopping: forwards the signals the parent received; True once there was one.
         status: where to report.
+        barrier: the processes share a step barrier (``--fast``): a dead dynamics process
+            stops the run.
 
     Returns:
         True when a child died.
     """
     died = False
-    boats = [c for c in children if c.label != "ocean"]
+    shards = children[1:]
     ocean = children[0]
-    while any(c.status is None for c in boats):
+    while any(c.status is None for c in shards):
         time.sleep(_WATCH_PERIOD)
         stopped = stopping()  # forwards a SIGINT / SIGTERM the parent received
         for c in children:
@@ -160,26 +217,35 @@ def _watch(children: list[_Child], epoch: float, stopping, status: TextIO) -> bo
             print(f"boatsim: process {c.label} (pid {c.proc.pid}) died: {_describe(code)}",
                   file=status)
             if c is ocean:
-                c.status = None
-                if "--epoch" not in c.args:  # it joins: no handshake, no wait for the recorder
-                    c.args = [a for a in c.args if a != "--await-recorder"]
-                    c.args += ["--epoch", repr(epoch)]
-                _spawn(c, handshake=False)
-                print(f"boatsim: restarted the ocean (pid {c.proc.pid}); it joins at the "
-                      "current simulation time with the scenario's sea state; the boats keep "
-                      "the last sea state they had meanwhile", file=status)
+                _restart_ocean(c, epoch, status)
+            elif barrier:
+                print("boatsim: stopping the run: the other processes would wait for its "
+                      "boats at the step barrier forever", file=status)
+                stop_processes([s.proc for s in shards], timeout=10.0)
     return died
 
 
 def run_processes(scenario: Scenario, path: str, options: RunOptions,
                   status: TextIO = sys.stderr) -> int:
-    """Run ``scenario`` (read from ``path``) as one process per node; returns the exit status.
+    """Run ``scenario`` (read from ``path``) in processes; returns the exit status.
+
+    ``options.shards`` dynamics processes and an ocean process.
 
     Raises:
         RecordError: the bag directory of ``options.record`` already exists.
     """
-    recorder = _start_recorder(options.record, options.exclude_topics) if options.record else None
-    children = _children(scenario, path, options)
+    record = Path(options.record) if options.record else None
+    if record is not None and record.exists():  # refused here, before any process starts
+        raise RecordError(f"{record} already exists; choose a new directory for the bag")
+    parts = None
+    recorder = None
+    if record is not None and options.fast:  # a bag per process, merged at the end
+        parts = record.parent / f".{record.name}.parts-{os.getpid()}"
+        shutil.rmtree(parts, ignore_errors=True)
+        parts.mkdir(parents=True)
+    elif record is not None:
+        recorder = _start_recorder(options.record, options.exclude_topics)
+    children = _children(scenario, path, options, parts)
     signals: list[int] = []
     previous = {sig: signal.signal(sig, lambda signum, _: signals.append(signum))
                 for sig in (signal.SIGINT, signal.SIGTERM)}
@@ -187,13 +253,16 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     try:
         for c in children:
             _spawn(c, handshake=True)
-        print(f"boatsim: started {len(children)} processes (ocean + {len(scenario.boats)} "
-              f"boats): pids {' '.join(str(c.proc.pid) for c in children)}"
-              + (f"; recording to {options.record} (pid {recorder.pid})" if recorder else ""),
-              file=status)
+        kind = "boats" if options.shards == len(scenario.boats) else "shards"
+        print(f"boatsim: started {len(children)} processes (ocean + {options.shards} {kind}"
+              f"{', one clock: ' + _clock_words(options) if options.fast else ''}): pids "
+              f"{' '.join(str(c.proc.pid) for c in children)}"
+              + (f"; recording to {options.record} (pid {recorder.pid})" if recorder else "")
+              + (f"; recording to {options.record} (a bag per process, merged at the end)"
+                 if parts else ""), file=status)
         if not _await_ready(children, lambda: bool(signals), status):
             return 0 if signals else 1
-        epoch = time.time() + _GO_AHEAD
+        epoch = 0.0 if options.fast else time.time() + _GO_AHEAD
         _go(children, epoch)
         print(f"boatsim: every process ready after {time.monotonic() - start:.1f} s"
               + (" (the recorder subscribed to each)" if recorder else "")
@@ -209,7 +278,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
             forwarded = len(signals)
             return bool(signals)
 
-        died = _watch(children, epoch, stopping, status)
+        died = _watch(children, epoch, stopping, status, barrier=options.fast)
         stop_processes([children[0].proc])  # the ocean, when it runs with no duration
         ok = all(c.status in (0, None) for c in children) and not died
         return 0 if ok else 1
@@ -218,5 +287,26 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
         if recorder is not None:
             stop_processes([recorder], timeout=30.0)
             print(f"boatsim: recorded to {options.record}", file=status)
+        if parts is not None:
+            _merge_parts(parts, record, status)
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+
+
+def _clock_words(options: RunOptions) -> str:
+    return ("the ocean's process grants every step, after the replayer's grants (lockstep)"
+            if options.lockstep else "the ocean's process grants every step")
+
+
+def _merge_parts(parts: Path, record: Path, status: TextIO) -> None:
+    """Merge the processes' bags in ``parts`` into ``record``, then remove them."""
+    from boat_dynamics.tools.bagfile import merge
+
+    bags = sorted(p for p in parts.iterdir() if p.is_dir() and any(p.glob("*.mcap")))
+    if not bags:
+        print(f"boatsim: nothing recorded (no process wrote a bag in {parts})", file=status)
+        return
+    counts = merge(bags, record)
+    shutil.rmtree(parts, ignore_errors=True)
+    print(f"boatsim: recorded {sum(counts.values())} messages on {len(counts)} topics to "
+          f"{record} (merged from {len(bags)} processes' bags)", file=status)

@@ -30,6 +30,7 @@ from boat_dynamics.physics.pipeline import init_scenario
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
 from boat_dynamics.process import SharedTime, start_child, stop_processes, watch_stdin
+from boat_dynamics.ros.barrier import StepConductor, StepMember, shard_slice
 from boat_dynamics.ros.node import DynamicsNode, SimClock, StartInterrupted
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
 from boat_msgs_py import names
@@ -72,9 +73,14 @@ class RunOptions:
         fast: run as fast as possible and publish /clock (else paced to real time).
         duration: s of simulated time, None = until stopped.
         record: directory of a rosbag2 (MCAP) bag to write, or None.
-        role: ``all`` (ocean and every boat), ``ocean`` or ``boat`` (one process of
-            ``--processes``).
-        boat: the boat of a ``boat`` role.
+        role: ``all`` (ocean and every boat), ``ocean`` or ``shard`` (one process of
+            ``--processes`` or ``--shards``).
+        shard: a ``shard`` role's (K, N): its boats are share K of N
+            (:func:`boat_dynamics.ros.barrier.shard_slice`).
+        shards: an ``ocean`` role with ``fast``: own the clock of this many shards (the step
+            barrier, :mod:`boat_dynamics.ros.barrier`); 0 = none (real time).
+        standalone: started alone (``--only``): wait for the ocean and the other processes
+            as long as it takes, saying so.
         epoch: s (wall clock) of simulation time 0, shared by the processes of a run; None =
             now (or 0 with ``fast``).
         lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
@@ -92,7 +98,9 @@ class RunOptions:
     duration: float | None = None
     record: str | None = None
     role: str = "all"
-    boat: str | None = None
+    shard: tuple[int, int] | None = None
+    shards: int = 0
+    standalone: bool = False
     epoch: float | None = None
     lockstep: bool = False
     exclude_topics: tuple[str, ...] = ()
@@ -182,10 +190,10 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
     if options.epoch is not None and not fast:  # joining a run that started at the epoch
         clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
-    if options.role == "boat":  # one boat of --processes, joining at clock.t
-        scenario = replace(scenario, boats=tuple(b for b in scenario.boats
-                                                 if b.name == options.boat))
-    if options.role in ("all", "boat"):  # derived parameters, afloat at clock.t: once
+    if options.role == "shard":  # a share of the boats, joining at clock.t
+        scenario = replace(scenario, boats=scenario.boats[shard_slice(
+            *options.shard, len(scenario.boats))])
+    if options.role in ("all", "shard"):  # derived parameters, afloat at clock.t: once
         scenario = init_scenario(scenario, clock.t)
     bag = (BagWriter(options.record, exclude=set(options.exclude_topics)) if options.record
            else None)
@@ -236,6 +244,34 @@ class _Parent:
             self.go.set()
 
 
+def _dynamics_name(scenario: Scenario, options: RunOptions) -> str:
+    """The dynamics node's name: ``boat_dynamics``, or a shard's.
+
+    A shard's is ``boat_dynamics_<boat>`` when it has one named boat (as ``--processes``
+    makes them), else ``boat_dynamics_shard_<K>``.
+    """
+    if options.shard is None:
+        return "boat_dynamics"
+    if len(scenario.boats) == 1 and scenario.boats[0].name:
+        return f"boat_dynamics_{scenario.boats[0].name}"
+    return f"boat_dynamics_shard_{options.shard[0]}"
+
+
+#: The step barrier's protocol, not recorded (as /boatsim/lockstep, it is no simulation data).
+_BARRIER_TOPICS = frozenset({names.STEP_GRANT, names.STEP_DONE})
+#: Topics every node has or that only the clock owner's recorder records.
+_NOT_SHARDS = frozenset({names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP})
+
+
+def _tapped_by_shards(node, topic: str) -> bool:
+    """Whether a shard's dynamics node publishes or subscribes ``topic`` (it taps it)."""
+    if topic in _NOT_SHARDS:
+        return False
+    infos = (*node.get_publishers_info_by_topic(topic),
+             *node.get_subscriptions_info_by_topic(topic))
+    return any(info.node_name.startswith("boat_dynamics") for info in infos)
+
+
 def _recorded(node, publisher) -> bool:
     """Whether the recorder subscribes to ``publisher``'s topic and a subscription matched."""
     return publisher.get_subscription_count() > 0 and any(
@@ -264,6 +300,8 @@ class _Loop:
                          else scenario.simulation.duration)
         self.executor = SingleThreadedExecutor()
         self.dynamics = self.ocean = self.recorder = None
+        self.member: StepMember | None = None  # a shard's side of the step barrier
+        self.conductor: StepConductor | None = None  # the clock owner's side
         self.parent: _Parent | None = None  # a --processes child's parent
         self.surface_server: subprocess.Popen | None = None
         self.shared_time: SharedTime | None = None  # the simulation time, for the server
@@ -278,11 +316,14 @@ class _Loop:
         scenario = self.scenario
         tap = bag.tap(clock.stamp_ns) if bag is not None else None
         deferred = options.ready_fd is not None  # the epoch comes with the parent's go
-        if options.role in ("all", "boat"):
-            name = "boat_dynamics" if options.role == "all" else f"boat_dynamics_{options.boat}"
-            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast, tap=tap, name=name,
+        if options.role in ("all", "shard"):
+            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
+                                         tap=tap, name=_dynamics_name(scenario, options),
                                          deferred=deferred, stopped=self.stop.is_set)
             self.nodes.append(self.dynamics)
+            if fast and options.shard is not None:
+                self.member = StepMember(*options.shard)
+                self.nodes.append(self.member)
         if options.role == "all":  # the surface service beside this process (module docs)
             # its own session: a terminal's Ctrl-C is this process's to handle
             self.shared_time = SharedTime()
@@ -297,14 +338,23 @@ class _Loop:
                                                     if self.dynamics else None),
                                    environment=scenario.environment)
             self.nodes.append(self.ocean)
+            if fast and options.shards:
+                self.conductor = StepConductor(options.shards, clock, self.duration,
+                                               options.lockstep, tap)
+                self.nodes.append(self.conductor)
         self.logger = self.nodes[0].get_logger()
-        if bag is not None:
-            # The sim's own topics are tapped at their publishers; the recorder takes the rest.
-            self.recorder = TopicRecorder(self.nodes[0], bag, clock.stamp_ns, skip=tap.topics,
-                                          qos=RECORD_QOS)
-            self.recorder.discover()
+        if bag is not None and options.role != "shard":
+            # The sim's own topics are tapped at their publishers; the recorder takes the rest
+            # (with shards: what no shard taps; it looks once every shard has reported).
+            self.recorder = TopicRecorder(self.nodes[0], bag, clock.stamp_ns,
+                                          skip=tap.topics | _BARRIER_TOPICS,
+                                          qos=RECORD_QOS,
+                                          skip_if=_tapped_by_shards if options.shards else None)
+            if self.conductor is None:
+                self.recorder.discover()
         for n in self.nodes:
-            self.executor.add_node(n)
+            if n is not self.member and n is not self.conductor:  # they spin on their own
+                self.executor.add_node(n)
 
     def run(self) -> int:
         """Make the nodes, wait for the sea state, step until the duration or a stop.
@@ -315,6 +365,8 @@ class _Loop:
         self._make_nodes()
         if self.options.ready_fd is not None and not self._handshake():
             return 0  # stopped before the start
+        if self.conductor is not None:
+            return self._conduct()
         if not self._wait_for_sea():
             return 1
         if self.stop.is_set():
@@ -326,6 +378,7 @@ class _Loop:
             self._serve_callbacks(wall0)  # --processes: the outputs at t are due at wall0 + t
         if self.dynamics is not None:
             self.dynamics.publish_outputs()
+            self._report()
         if self.ocean is not None:
             self.ocean.advance(self.clock.t)
         self._log_start()
@@ -335,10 +388,11 @@ class _Loop:
         self.display.start(self.clock.t)
         while ((self.duration is None or self.clock.t < self.duration - 0.5 / rate)
                and not self.stop.is_set()):
-            if not self._hold_for_grant():
+            if not self._hold_for_grant(wall0):
                 break
             if self.dynamics is not None:
                 self.dynamics.advance()
+                self._report()
             else:
                 self.clock.steps += 1
             if self.ocean is not None:
@@ -395,26 +449,89 @@ class _Loop:
             self.executor.spin_once(timeout_sec=0.1)
 
     def _wait_for_sea(self) -> bool:
-        """Serve callbacks until the dynamics node has the wave field; False on a time-out."""
+        """Serve callbacks until the dynamics node has the wave field; False on a time-out.
+
+        A process started alone (``--only``) waits as long as it takes, saying so.
+        """
         deadline = time.monotonic() + _FIELD_TIMEOUT
         while self.dynamics is not None and self.dynamics.sea is None and not self.stop.is_set():
             if time.monotonic() > deadline:
-                self.logger.error("no wave field received from the ocean node")
-                return False
+                if not self.options.standalone:
+                    self.logger.error("no wave field received from the ocean node")
+                    return False
+                self.logger.info(f"waiting for {names.WAVE_FIELD} (`boatsim run SCENARIO "
+                                 "--only ocean` starts the ocean)")
+                deadline = time.monotonic() + _FIELD_TIMEOUT
             self.executor.spin_once(timeout_sec=0.05)
         return True
+
+    def _conduct(self) -> int:
+        """The clock owner's loop: grant steps, follow the slowest shard with /clock and sea.
+
+        Returns:
+            The exit status (0).
+        """
+        conductor, clock = self.conductor, self.clock
+        next_log = time.monotonic() + 1.0
+        while (done := conductor.serve(0.05)) is None:  # every shard has reported
+            if self.stop.is_set():
+                return 0
+            next_log = conductor.log_missing(next_log)
+            _spin_pending(self.executor)
+        clock.steps = done  # a restarted owner joins where the shards are
+        if self.recorder is not None:
+            self.recorder.discover()  # now every shard's topics are known: what is left
+        conductor.publish_clock()
+        self.ocean.advance(clock.t)
+        self._log_start()
+        next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+        end = math.inf if self.duration is None else round(self.duration * clock.rate_hz)
+        while clock.steps < end and not self.stop.is_set():
+            done = conductor.serve(0.01)
+            while clock.steps < done:
+                clock.steps += 1
+                conductor.publish_clock()
+                self.ocean.advance(clock.t)
+            self._serve_callbacks(0.0)
+            if self.recorder is not None and time.monotonic() > next_discovery:
+                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
+                self.recorder.discover()
+                self.bag.flush_due(clock.stamp_ns())
+        return 0
 
     def _log_start(self) -> None:
         sim = self.scenario.simulation
         boats = len(self.scenario.boats) if self.dynamics else 0
         self.logger.info(
             f"running {self.scenario.source}: {boats} boat(s) at {sim.rate_hz:g} Hz, "
-            f"{'as fast as possible (/clock published)' if self.fast else 'real time'}"
+            f"{self._pace()}"
             + (f", for {self.duration:g} s" if self.duration else "")
             + (f", recording to {self.bag.path}" if self.bag else ""))
 
-    def _hold_for_grant(self) -> bool:
-        """Lockstep: serve callbacks until the replayer grants the next step; False on a stop."""
+    def _report(self) -> None:
+        """A shard's report to the step barrier: the steps taken, the commands received."""
+        if self.member is not None:
+            self.member.stepped(self.clock.steps, self.dynamics.commands_received)
+
+    def _pace(self) -> str:
+        if not self.fast:
+            return "real time"
+        if self.member is not None:
+            return (f"as fast as the step barrier grants (shard {self.options.shard[0]}/"
+                    f"{self.options.shard[1]}; /clock from the ocean's process)")
+        if self.conductor is not None:
+            return (f"owning the clock of {self.options.shards} dynamics process(es): "
+                    "granting steps, publishing /clock")
+        return "as fast as possible (/clock published)"
+
+    def _hold_for_grant(self, wall0: float) -> bool:
+        """Serve callbacks until the next step is granted; False on a stop.
+
+        A shard waits for the step barrier; a lockstep run for the replayer.
+        """
+        if self.member is not None:
+            return self.member.wait(self.clock.steps, lambda: self.dynamics.commands_received,
+                                    self.stop, lambda: self._serve_callbacks(wall0))
         if not self.options.lockstep or self.dynamics is None:
             return True
         next_repeat = time.monotonic() + 0.1
@@ -453,6 +570,9 @@ class _Loop:
             print(f"boatsim: wrote {total} messages on {len(self.bag.counts)} topics to "
                   f"{self.bag.path}", file=status)
         endpoints = sum(1 for n in self.nodes for _ in (*n.publishers, *n.subscriptions))
+        for barrier in (self.member, self.conductor):
+            if barrier is not None:
+                barrier.executor_.shutdown(timeout_sec=0.1)
         if self.abandoned or endpoints > _DESTROY_LIMIT:
             # rmw publishes the process's whole endpoint list on every change, so destroying
             # N endpoints one by one costs N^2: 67 s for 1000 boats' 14,000. The process
@@ -464,7 +584,8 @@ class _Loop:
                              "within the DDS lease")
         else:
             for n in self.nodes:
-                self.executor.remove_node(n)
+                if n in self.executor.get_nodes():
+                    self.executor.remove_node(n)
                 n.destroy_node()
         self.executor.shutdown(timeout_sec=0.1)
         if self.surface_server is not None:  # SIGTERM: quiet even while it still imports

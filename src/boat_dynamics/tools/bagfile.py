@@ -15,7 +15,8 @@
 A killed recording has no summary and no metadata.yaml, so no reader opens it.
 :func:`reindex` (``boatsim reindex BAG``, as ``ros2 bag reindex``) reads every complete chunk
 with the mcap library's stream reader and writes the bag again, summary and metadata.yaml
-included. It uses rosbags' MCAP writer internals (rosbags is pinned in requirements/dev.txt);
+included. :func:`merge` joins the bags that the processes of a sharded run wrote. It uses
+rosbags' MCAP writer internals (rosbags is pinned in requirements/dev.txt);
 tests/boat_dynamics/tools/test_bagfile.py checks the result with rosbags and the mcap library.
 """
 
@@ -37,7 +38,7 @@ from rosbags.typesys import get_types_from_msg
 from rosbags.typesys.store import Typestore
 
 __all__ = ["CHUNK_SPAN_NS", "ROS_DISTRO", "JazzyWriter", "ReindexError", "ReindexReport",
-           "reindex"]
+           "merge", "reindex"]
 
 #: Longest span of bag time one MCAP chunk holds before it is written out, ns. Half the
 #: promised second: a kill can fall between a message's publication and its write, so the
@@ -236,3 +237,55 @@ def reindex(path: str | Path) -> ReindexReport:
     finally:
         shutil.rmtree(work, ignore_errors=True)
     return report
+
+
+def merge(parts: list[str | Path], target: str | Path) -> dict[str, int]:
+    """Write every message of the bags ``parts`` into one new bag ``target``, in time order.
+
+    The processes of a ``run --fast`` over several processes each record what they publish
+    (and the clock owner what the others publish) to a bag of their own; this joins them.
+    A part whose writer was killed is reindexed first (:func:`reindex`). Messages of equal
+    time keep the order of ``parts``.
+
+    Args:
+        parts: bag directories, each with one .mcap file.
+        target: the bag directory to create; must not exist.
+
+    Returns:
+        Messages per topic in ``target``.
+
+    Raises:
+        ReindexError: a part is not a bag.
+    """
+    import heapq
+
+    from mcap.reader import make_reader
+
+    from boat_msgs_py.typestore import new_typestore
+
+    store = new_typestore()
+    writer = JazzyWriter(target)
+    writer.open()
+    counts: dict[str, int] = {}
+    conns: dict[str, object] = {}
+    files = []
+    try:
+        streams = []
+        for order, part in enumerate(Path(p) for p in parts):
+            if not (part / "metadata.yaml").exists():
+                reindex(part)
+            files.append(next(part.glob("*.mcap")).open("rb"))
+            messages = make_reader(files[-1]).iter_messages(log_time_order=True)
+            streams.append(((m.log_time, order, schema, channel, m)
+                            for schema, channel, m in messages))
+        for _, _, schema, channel, message in heapq.merge(*streams, key=lambda x: x[:2]):
+            conn = conns.get(channel.topic)
+            if conn is None:
+                conn = conns[channel.topic] = _connection(writer, channel, schema, store)
+            writer.write(conn, message.log_time, message.data)
+            counts[channel.topic] = counts.get(channel.topic, 0) + 1
+    finally:
+        for f in files:
+            f.close()
+        writer.close()
+    return counts

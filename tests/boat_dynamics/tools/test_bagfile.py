@@ -27,6 +27,7 @@ from boat_dynamics.tools.bagfile import (
     ROS_DISTRO,
     JazzyWriter,
     ReindexError,
+    merge,
     reindex,
 )
 from boat_dynamics.tools.bags import BagError, read_bag
@@ -208,3 +209,44 @@ def test_reindex_refuses_what_is_not_a_bag(tmp_path, content):
     with pytest.raises(ReindexError, match="bag"):
         reindex(bag)
     assert not (tmp_path / ".bag.reindex").exists()
+
+
+def _clock_bag(path: Path, steps: list[int], topic: str = "/clock", close: bool = True
+               ) -> None:
+    store = typestore()
+    writer = JazzyWriter(path)
+    writer.open()
+    conn = writer.add_connection(topic, CLOCK, typestore=store)
+    for i in steps:
+        writer.write(conn, i * STEP_NS, _clock(i * STEP_NS))
+    if close:
+        writer.close()
+
+
+def test_merge_joins_the_bags_of_several_processes_in_time_order(tmp_path):
+    _clock_bag(tmp_path / "a", list(range(0, 300, 2)))
+    _clock_bag(tmp_path / "b", list(range(1, 300, 2)))
+    _clock_bag(tmp_path / "c", [0, 150, 299], topic="/other")
+    # a process killed while recording: no summary; its chunks up to its last second count
+    _clock_bag(tmp_path / "killed", list(range(200)), topic="/late", close=False)
+
+    counts = merge([tmp_path / p for p in ("a", "b", "c", "killed")], tmp_path / "all")
+
+    late = counts.pop("/late")
+    assert counts == {"/clock": 300, "/other": 3} and 100 <= late < 200
+    assert _stamps(tmp_path / "all") == [i * STEP_NS for i in range(300)]
+    with AnyReader([tmp_path / "all"]) as reader:
+        order = [(t, c.topic) for c, t, _ in reader.messages()]
+    assert order == sorted(order, key=lambda x: x[0])  # one timeline across the parts
+    meta = yaml.safe_load((tmp_path / "all" / "metadata.yaml").read_text())
+    assert meta["rosbag2_bagfile_information"]["message_count"] == 303 + late
+    with open(next((tmp_path / "all").glob("*.mcap")), "rb") as f:
+        channels = make_reader(f).get_summary().channels.values()
+    assert all(c.metadata["topic_type_hash"].startswith("RIHS01_") for c in channels)
+
+
+def test_merge_refuses_what_is_not_a_bag(tmp_path):
+    (tmp_path / "junk").mkdir()
+    (tmp_path / "junk" / "junk.mcap").write_bytes(b"not an mcap file")
+    with pytest.raises(ReindexError, match="not an MCAP file"):
+        merge([tmp_path / "junk"], tmp_path / "all")

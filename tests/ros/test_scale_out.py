@@ -1,0 +1,163 @@
+"""One simulation clock across processes: --shards, --processes and --only with --fast."""
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.typesys import Stores, get_typestore
+
+from boat_dynamics.tools.bagfile import merge
+from boat_dynamics.tools.bags import compare_bags, read_bag
+
+#: Three boats (two of the models, one scripted), float64 surface queries: sharding regroups
+#: the fleet, and float32 queries round differently per batch (see DESIGN, "Scale-out").
+FLEET = """
+simulation: {seed: 1, wave_precision: float64}
+ocean:
+  spectrum: {type: jonswap, significant_height: 0.8, peak_period: 5.5, direction_deg: 20.0,
+             spreading: 15.0, components: 16}
+boats:
+  - {name: alpha, initial_pose: {position: [0.0, 0.0, 0.0]}}
+  - {name: bravo, hull: {type: box, length: 6.0, beam: 2.5, height: 1.2}, density: 450.0,
+     center_of_mass: [0.0, 0.0, -0.25], initial_pose: {position: [0.0, 15.0, 0.0], yaw_deg: 90}}
+  - name: charlie
+    buoyancy: {model: sample_points, grid: [5, 3]}
+    initial_pose: {position: [-15.0, -10.0, 0.0]}
+    commands: [{t: 0.0, thrust: 1.0, rudder: 0.0}, {t: 1.0, thrust: 1.0, rudder: 0.35}]
+"""
+ODOM = ["/alpha/odom", "/bravo/odom", "/charlie/odom"]
+
+
+def _cli(*args, timeout=120):
+    return subprocess.run([sys.executable, "-m", "boat_dynamics", *args], capture_output=True,
+                          text=True, timeout=timeout)
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory):
+    d = tmp_path_factory.mktemp("fleet")
+    (d / "fleet.yaml").write_text(FLEET)
+    (d / "fleet32.yaml").write_text(FLEET.replace(", wave_precision: float64", ""))
+    out = _cli("run", str(d / "fleet.yaml"), "--fast", "--duration", "3", "--record",
+               str(d / "one"))
+    assert out.returncode == 0, out.stderr
+    return d
+
+
+def _run(fleet, name, *args, scenario="fleet.yaml"):
+    out = _cli("run", str(fleet / scenario), "--fast", "--duration", "3", "--record",
+               str(fleet / name), *args, timeout=180)
+    assert out.returncode == 0, out.stderr
+    assert "Traceback" not in out.stderr
+    return out
+
+
+def _odometry_agrees(a, b, tolerance):
+    result = compare_bags(a, b, topics=ODOM, tolerances={"*": tolerance})
+    assert result.ok, result.report()
+    assert [t.matched for t in result.topics] == [151, 151, 151]  # 3 s at 50 Hz, and t = 0
+
+
+def test_two_shards_give_the_odometry_of_one_process(fleet):
+    out = _run(fleet, "shards2", "--shards", "2")
+    assert "ocean + 2 shards" in out.stderr and "merged from 3 processes' bags" in out.stderr
+    _odometry_agrees(fleet / "one", fleet / "shards2", 1e-9)  # regrouped: rounding only
+    msgs = read_bag(fleet / "shards2")
+    clock = [t for t, _ in msgs["/clock"]]  # from the clock owner only: once per step
+    assert clock == [round(k * 1e7) for k in range(301)]
+    assert len(msgs["/ocean/wave_field"]) == 1
+    assert "/boatsim/step_done" not in msgs and "/boatsim/step_grant" not in msgs
+
+
+def test_one_shard_is_bit_identical_to_one_process_even_in_float32(fleet):
+    _run(fleet, "one32", scenario="fleet32.yaml")
+    _run(fleet, "shard1", "--shards", "1", scenario="fleet32.yaml")
+    _odometry_agrees(fleet / "one32", fleet / "shard1", 0.0)
+
+
+def test_a_process_per_boat_with_fast(fleet):
+    out = _run(fleet, "processes", "--processes")
+    assert "ocean + 3 boats" in out.stderr
+    _odometry_agrees(fleet / "one", fleet / "processes", 1e-9)
+
+
+def _command_bag(path):
+    store = get_typestore(Stores.ROS2_JAZZY)
+    plan = [(0.0, "/alpha/cmd_thrust", 1.0), (0.0, "/bravo/cmd_thrust", 0.5),
+            (0.8, "/alpha/cmd_rudder", 0.3), (1.0, "/bravo/cmd_thrust", -0.5),
+            (1.37, "/bravo/cmd_rudder", -0.2), (2.0, "/alpha/cmd_thrust", 0.2)]
+    msg = store.types["std_msgs/msg/Float64"]
+    with Writer(path, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        conns = {t: writer.add_connection(t, "std_msgs/msg/Float64", typestore=store)
+                 for t in sorted({t for _, t, _ in plan})}
+        for t, topic, value in plan:
+            writer.write(conns[topic], round(t * 1e9),
+                         store.serialize_cdr(msg(data=value), "std_msgs/msg/Float64"))
+    return plan
+
+
+def test_a_lockstep_replay_through_shards_matches_one_process(boatsim, fleet, tmp_path):
+    plan = _command_bag(tmp_path / "commands")
+    runs = {}
+    for name, extra in (("one", ()), ("shards", ("--shards", "2"))):
+        sim = boatsim("run", str(fleet / "fleet.yaml"), "--fast", "--lockstep", "--duration",
+                      "3", "--record", str(tmp_path / name), *extra, name=name)
+        out = _cli("replay", str(tmp_path / "commands"), timeout=90)
+        assert out.returncode == 0, out.stderr
+        assert sim.wait(timeout=90) == 0, sim.output()
+        runs[name] = tmp_path / name
+    _odometry_agrees(runs["one"], runs["shards"], 1e-9)
+    topics = sorted({t for _, t, _ in plan})
+    result = compare_bags(runs["one"], runs["shards"], topics=topics, tolerances={"*": 0.0})
+    assert result.ok, result.report()  # each command recorded at the same simulation time
+    stamps = read_bag(runs["shards"], ["/bravo/cmd_rudder"])["/bravo/cmd_rudder"]
+    assert [t for t, _ in stamps] == [1_370_000_000]  # held at 1.37 s until it arrived
+
+
+def test_processes_started_apart_join_the_barrier(boatsim, fleet, tmp_path):
+    common = (str(fleet / "fleet.yaml"), "--fast", "--duration", "3")
+    second = boatsim("run", *common, "--only", "shard", "1/2", "--record",
+                     str(tmp_path / "s1"), name="s1")
+    ocean = boatsim("run", *common, "--shards", "2", "--only", "ocean", "--record",
+                    str(tmp_path / "ocean"), name="ocean")
+    first = boatsim("run", *common, "--only", "shard", "0/2", "--record",
+                    str(tmp_path / "s0"), name="s0")
+    for sim in (first, second, ocean):
+        assert sim.wait(timeout=120) == 0, sim.output()
+    merge([tmp_path / "ocean", tmp_path / "s0", tmp_path / "s1"], tmp_path / "all")
+    _odometry_agrees(fleet / "one", tmp_path / "all", 1e-9)
+    assert len(read_bag(tmp_path / "ocean", ["/clock"])["/clock"]) == 301
+    assert "owning the clock of 2 dynamics process(es)" in ocean.output()
+
+
+def test_a_dead_shard_stops_a_fast_run(boatsim, fleet):
+    sim = boatsim("run", str(fleet / "fleet.yaml"), "--fast", "--shards", "2")
+    deadline = time.monotonic() + 60
+    while "every process ready" not in sim.output():
+        assert time.monotonic() < deadline and sim.proc.poll() is None, sim.output()
+        time.sleep(0.1)
+    *_, rest = (int(p) for p in re.search(r"pids ([\d ]+)", sim.output()).group(1).split())
+    os.kill(rest, signal.SIGKILL)
+    assert sim.wait(timeout=30) == 1
+    out = sim.output()
+    assert f"process shard 1/2 (pid {rest}) died: killed by SIGKILL" in out
+    assert "stopping the run" in out and "Traceback" not in out
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (("--only", "ocean"), "add --fast"),
+    (("--fast", "--only", "ocean"), "add --shards N"),
+    (("--fast", "--only", "shard", "3/3", "x"), "expected `ocean` or `shard K/N`"),
+    (("--fast", "--only", "shard", "3/3"), "K must be 0 .. N - 1"),
+    (("--fast", "--only", "shard", "0/4"), "4 shards for 3 boat(s)"),
+    (("--fast", "--shards", "4"), "at most one shard per boat"),
+])
+def test_sharding_mistakes_exit_2_saying_what_is_allowed(fleet, args, message):
+    out = _cli("run", str(fleet / "fleet.yaml"), *args, timeout=60)
+    assert out.returncode == 2 and message in out.stderr, out.stderr
+    assert "Traceback" not in out.stderr
