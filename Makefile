@@ -43,9 +43,16 @@ $(VENV)/.msgs-built: $(VENV)/.ros-installed $(MSGS_SRC)
 run: setup
 	$(VENV)/bin/boatsim run $(ARGS)
 
+# Without ARGS: the tests that start no ROS processes on both cores (pytest-xdist: 9.5 -> 6
+# min here), then the ROS end-to-end tests one at a time (they run boatsim processes).
 test: setup
 	$(VENV)/bin/ruff check src tests benchmarks examples
+ifeq ($(strip $(ARGS)),)
+	$(VPY) -m pytest -n 2 --ignore=tests/ros
+	$(VPY) -m pytest tests/ros
+else
 	$(VPY) -m pytest $(ARGS)
+endif
 
 bench: setup
 	$(VPY) benchmarks/run.py $(ARGS)
