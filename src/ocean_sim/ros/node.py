@@ -38,11 +38,15 @@ from ocean_sim.physics.waves import PRECISIONS, InvalidSeaStateError, WaveCompon
 from ocean_sim.physics.waves import sample_surface as sample
 from ocean_sim.ros.environment import EnvironmentParameters, describe
 
-__all__ = ["COMPONENT_FIELDS", "MAX_CLOUD_POINTS", "MAX_SAMPLE_POINTS", "OceanNode",
+__all__ = ["COMPONENT_FIELDS", "MAX_CLOUD_POINTS", "MAX_SAMPLE_COORDINATE", "MAX_SAMPLE_POINTS",
+           "OceanNode",
            "answer_sample"]
 
 #: Largest batch /ocean/sample_surface answers in one call.
 MAX_SAMPLE_POINTS = 100_000
+#: Largest |x| or |y| of a /ocean/sample_surface point, m (as far as a boat may start: beyond,
+#: float32 phases overflow and nothing physical is asked).
+MAX_SAMPLE_COORDINATE = 1e7
 
 #: Most points of the /ocean/surface clouds together (a parameter change asking for more is
 #: refused: 1.6 billion took the node down with MemoryError).
@@ -65,9 +69,12 @@ _CLOUD_FIELDS = [
 
 
 def answer_sample(request: SampleSurface.Request, response: SampleSurface.Response,
-                  sea: WaveField | None, now: float, epoch: float | None, precision: str
-                  ) -> SampleSurface.Response:
+                  sea: WaveField | None, now: float, epoch: float | None, precision: str,
+                  log: Callable[[str], None] | None = None) -> SampleSurface.Response:
     """Fill ``response`` to ``request`` (/ocean/sample_surface), checks first.
+
+    An exception while computing is answered (``success: false``, what went wrong) and
+    handed to ``log``: it never ends the serving node.
 
     Args:
         request: the points and the stamp (zero = ``now``).
@@ -77,6 +84,7 @@ def answer_sample(request: SampleSurface.Request, response: SampleSurface.Respon
         epoch: s, the stamp of simulation time 0; None = not known yet (a stamped request
             is refused).
         precision: one of PRECISIONS.
+        log: where an unexpected exception is reported (an error log), or None.
     """
     n = len(request.points)
     refusal = None
@@ -91,15 +99,23 @@ def answer_sample(request: SampleSurface.Request, response: SampleSurface.Respon
         response.success, response.message = False, refusal
         return response
     xy = np.array([(p.x, p.y) for p in request.points], dtype=float).reshape(n, 2)
-    bad = np.flatnonzero(~np.all(np.isfinite(xy), axis=1))
+    bad = np.flatnonzero(~np.all(np.abs(xy) <= MAX_SAMPLE_COORDINATE, axis=1))
     if bad.size:
         response.success = False
         response.message = (f"points[{bad[0]}] = ({xy[bad[0], 0]}, {xy[bad[0], 1]}) is not "
-                            f"finite ({bad.size} non-finite points); nothing computed")
+                            f"finite or beyond +-{MAX_SAMPLE_COORDINATE:g} m ({bad.size} such "
+                            "points); nothing computed")
         return response
     stamp = request.stamp
     t = now if stamp.sec == 0 and stamp.nanosec == 0 else time_to_seconds(stamp) - epoch
-    surface = sample(sea, xy, t, precision=precision)
+    try:
+        surface = sample(sea, xy, t, precision=precision)
+    except Exception as exc:  # answered, logged: a request never ends the node
+        response.success = False
+        response.message = f"could not sample the surface: {type(exc).__name__}: {exc}"
+        if log is not None:
+            log(f"{response.message} ({n} points, t = {t:g} s)")
+        return response
     response.success = True
     response.message = ""
     response.heights = surface.heights.tolist()
@@ -324,5 +340,5 @@ class OceanNode(Node):
     def _on_sample(self, request: SampleSurface.Request, response: SampleSurface.Response
                    ) -> SampleSurface.Response:
         return answer_sample(request, response, self._sea, self._now(), self._epoch,
-                             self.get_parameter("precision").value)
+                             self.get_parameter("precision").value, self.get_logger().error)
 

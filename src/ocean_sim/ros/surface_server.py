@@ -85,7 +85,7 @@ class SurfaceServer(Node):
     def _on_sample(self, request: SampleSurface.Request, response: SampleSurface.Response
                    ) -> SampleSurface.Response:
         return answer_sample(request, response, self._sea, self.now(), self._epoch,
-                             self._precision)
+                             self._precision, self.get_logger().error)
 
 
 def serve(time_file: str) -> int:

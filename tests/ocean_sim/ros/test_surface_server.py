@@ -53,6 +53,22 @@ def test_answers_from_the_published_sea_at_the_clock_time(server):
         sample_surface(SEA, XY, 3.5, precision="float32").heights, abs=1e-12)
 
 
+def test_a_point_beyond_the_bound_is_refused_and_a_failure_answered(server, monkeypatch):
+    server._on_field(wave_field_to_msg(SEA, seconds_to_time(100.0)))
+    far = SampleSurface.Request(points=[Point(x=1.0, y=2.0), Point(x=1e308, y=0.0)])
+    answer = server._on_sample(far, SampleSurface.Response())
+    assert not answer.success and "points[1] = (1e+308, 0.0)" in answer.message
+    assert "beyond +-1e+07 m" in answer.message
+
+    def broken(*args, **kwargs):
+        raise FloatingPointError("overflow")
+
+    monkeypatch.setattr("ocean_sim.ros.node.sample", broken)
+    answer = _ask(server)  # answered, and the server goes on
+    assert not answer.success
+    assert answer.message == "could not sample the surface: FloatingPointError: overflow"
+
+
 def test_follows_the_ocean_nodes_precision_only(server):
     server._on_field(wave_field_to_msg(SEA, seconds_to_time(100.0)))
 
