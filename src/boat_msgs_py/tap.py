@@ -7,6 +7,7 @@ messages have their CDR padding zeroed, so identical runs give identical bytes.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 from rclpy.node import Node
@@ -15,7 +16,10 @@ from rclpy.serialization import serialize_message
 
 from boat_msgs_py.typestore import zero_padding
 
-__all__ = ["Tap", "TappedPublisher", "type_name"]
+__all__ = ["SUBSCRIBER_CHECK_PERIOD", "Tap", "TappedPublisher", "type_name"]
+
+#: How often a publisher whose messages are optional asks whether anyone subscribes, s (wall).
+SUBSCRIBER_CHECK_PERIOD = 1.0
 
 
 def type_name(msg_class: type) -> str:
@@ -51,12 +55,31 @@ class TappedPublisher:
     def __init__(self, node: Node, msg_class: type, topic: str, qos: QoSProfile,
                  tap: Tap | None = None) -> None:
         self.topic = topic
+        self._subscribed = True  # until first asked
+        self._next_check = -math.inf
         self._pub = node.create_publisher(msg_class, topic, qos)
         self._type = type_name(msg_class)
         self._tap = tap
         if tap is not None:
             tap.topics.add(topic)
             tap.qos[topic] = qos
+
+    def wanted(self, now: float) -> bool:
+        """Whether a message on this topic is worth building now.
+
+        True when the tap records it or a subscriber has matched. The subscriber count is
+        asked at most every :data:`SUBSCRIBER_CHECK_PERIOD` s, so a new subscriber may wait
+        that long for its first message.
+
+        Args:
+            now: s, the wall clock (time.monotonic()).
+        """
+        if self._tap is not None:
+            return True
+        if now >= self._next_check:
+            self._subscribed = self._pub.get_subscription_count() > 0
+            self._next_check = now + SUBSCRIBER_CHECK_PERIOD
+        return self._subscribed
 
     def publish(self, msg: object) -> None:
         """Publish ``msg``, a message or its serialized bytes (and hand it to the tap)."""

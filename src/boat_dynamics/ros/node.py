@@ -578,14 +578,17 @@ class DynamicsNode(Node):
         v_ref = (state.velocity - cross(state.angular_velocity, self._system.center_of_mass)
                  ).tolist()
         omega = state.angular_velocity.tolist()
-        for boat in self.boats:
-            i, t = boat.index, boat.templates
-            boat.pubs["odom"].publish(t["odom"].pack(sec, nanosec, *pos[i], *quat[i], *v_ref[i],
-                                                     *omega[i]))
-            boat.pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
-            boat.pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
+        now = time.monotonic()
+        for boat in self.boats:  # odom always; pose and twist when wanted (subscribed, recorded)
+            i, t, pubs = boat.index, boat.templates, boat.pubs
+            pubs["odom"].publish(t["odom"].pack(sec, nanosec, *pos[i], *quat[i], *v_ref[i],
+                                                *omega[i]))
+            if pubs["pose"].wanted(now):
+                pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
+            if pubs["twist"].wanted(now):
+                pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
         if self._publish_tf:
-            self._transforms.publish(sec, nanosec, pos, quat)
+            self._transforms.publish(sec, nanosec, pos, quat, now)
 
     def _publish_wrenches(self, sec: int, nanosec: int) -> None:
         """wrench/<source> of every boat: the forces that acted during the last step."""
@@ -596,10 +599,13 @@ class DynamicsNode(Node):
         rows = {source: np.concatenate([getattr(forces, source).force,
                                         getattr(forces, source).torque], axis=1).tolist()
                 for source in names.WRENCH_SOURCES}
+        now = time.monotonic()
         for boat in self.boats:
             template = boat.templates["wrench"]
             for source in names.WRENCH_SOURCES:
-                boat.pubs[source].publish(template.pack(sec, nanosec, *rows[source][boat.index]))
+                if boat.pubs[source].wanted(now):  # subscribed or recorded
+                    boat.pubs[source].publish(template.pack(sec, nanosec,
+                                                            *rows[source][boat.index]))
 
     def _publish_diagnostics(self, stamp) -> None:
         """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""

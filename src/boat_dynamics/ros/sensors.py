@@ -78,8 +78,14 @@ class TransformPublisher:
         if self._static_pub is not None:
             self._static_pub.publish(tf_message(stamp, self._static))
 
-    def publish(self, sec: int, nanosec: int, positions: list, orientations: list) -> None:
-        """``/tf``, one message per boat: K (3,) m reference points, K (4,) orientations."""
+    def publish(self, sec: int, nanosec: int, positions: list, orientations: list,
+                now: float) -> None:
+        """``/tf``, one message per boat: K (3,) m reference points, K (4,) orientations.
+
+        Only while someone subscribes or the run records (``now``: s, time.monotonic()).
+        """
+        if not self._pub.wanted(now):
+            return
         for template, p, q in zip(self._templates, positions, orientations, strict=True):
             self._pub.publish(template.pack(sec, nanosec, *p, *q))
 

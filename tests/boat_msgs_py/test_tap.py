@@ -1,0 +1,44 @@
+"""Tapped publishers: what is recorded, and the messages built only while someone listens."""
+
+import os
+import time
+
+import pytest
+import rclpy
+from std_msgs.msg import Float64
+
+from boat_msgs_py.qos import STATE_QOS
+from boat_msgs_py.tap import SUBSCRIBER_CHECK_PERIOD, Tap, TappedPublisher
+
+
+@pytest.fixture
+def node(monkeypatch):
+    monkeypatch.setenv("ROS_DOMAIN_ID", str(150 + os.getpid() % 80))
+    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    made = rclpy.create_node("tap_test", context=context)
+    yield made
+    made.destroy_node()
+    rclpy.try_shutdown(context=context)
+
+
+def test_an_optional_topic_is_wanted_once_someone_subscribes(node):
+    topic = f"/tap_test_{os.getpid()}"
+    pub = TappedPublisher(node, Float64, topic, STATE_QOS)
+    now = 1000.0
+    assert not pub.wanted(now)  # nobody listens: nothing to build
+    node.create_subscription(Float64, topic, lambda msg: None, 10)
+    assert not pub.wanted(now + 0.5 * SUBSCRIBER_CHECK_PERIOD)  # asked once a period only
+    deadline = time.monotonic() + 10
+    while not pub.wanted(now := now + SUBSCRIBER_CHECK_PERIOD):  # once it has matched
+        assert time.monotonic() < deadline, "the subscription never matched"
+        time.sleep(0.01)
+
+def test_a_recorded_topic_is_always_wanted_and_tapped(node):
+    seen = []
+    tap = Tap(lambda topic, msgtype, data: seen.append((topic, msgtype, len(data))))
+    pub = TappedPublisher(node, Float64, f"/tap_rec_{os.getpid()}", STATE_QOS, tap)
+    assert pub.wanted(0.0)
+    pub.publish(Float64(data=1.5))
+    assert seen == [(f"/tap_rec_{os.getpid()}", "std_msgs/msg/Float64", 12)]
