@@ -147,6 +147,7 @@ class StepConductor(Node):
         self.executor_.add_node(self)
         self._wrong: set[int] = set()
         self._next_repeat = 0.0
+        self._next_clock = 0.0
 
     def _on_done(self, msg: UInt64MultiArray) -> None:
         if len(msg.data) != 4:
@@ -203,6 +204,17 @@ class StepConductor(Node):
             if grant == done and self.lockstep:  # holding: late joiners see where we are
                 self.publish_clock(tapped=False)
         return done
+
+    def repeat_clock(self) -> None:
+        """/clock again, unrecorded, at most every 0.1 s.
+
+        While the owner waits (for its processes, for the parent's go), a replayer then sees
+        a simulation that follows /clock.
+        """
+        now = time.monotonic()
+        if now >= self._next_clock:
+            self._next_clock = now + _REPEAT_PERIOD
+            self.publish_clock(tapped=False)
 
     def publish_clock(self, tapped: bool = True) -> None:
         """/clock at the owner's simulation time (``tapped``: also into the bag)."""

@@ -141,11 +141,14 @@ class DynamicsNode(Node):
             where the clock's epoch is known only once every process is ready).
         stopped: checked between boats while they are made: a large fleet's start-up stops
             on Ctrl-C (raises StartInterrupted) instead of making every boat first.
+        follow_lockstep: subscribe to /boatsim/lockstep (False for a shard, whose clock owner
+            does: a replayer then waits for the owner, not for a shard).
     """
 
     def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
                  tap: Tap | None = None, name: str = "boat_dynamics",
-                 deferred: bool = False, stopped: Callable[[], bool] | None = None) -> None:
+                 deferred: bool = False, stopped: Callable[[], bool] | None = None,
+                 follow_lockstep: bool = True) -> None:
         super().__init__(name)
         sim = scenario.simulation
         self._sim_clock = clock
@@ -210,8 +213,9 @@ class DynamicsNode(Node):
         self._wrong_types: set[tuple[str, str]] = set()  # (command topic, type) reported
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
-        self._lockstep_sub = self.create_subscription(
+        self._lockstep_sub = (self.create_subscription(
             Float64MultiArray, names.LOCKSTEP, self._on_lockstep, COMMAND_QOS)
+            if follow_lockstep else None)  # a shard: the clock owner follows the replayer
         self._mode_params = {}
         for boat in self.boats:
             name = f"{boat.spec.name}.control_mode" if boat.spec.name else "control_mode"

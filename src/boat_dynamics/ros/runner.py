@@ -263,13 +263,24 @@ _BARRIER_TOPICS = frozenset({names.STEP_GRANT, names.STEP_DONE})
 _NOT_SHARDS = frozenset({names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP})
 
 
-def _tapped_by_shards(node, topic: str) -> bool:
-    """Whether a shard's dynamics node publishes or subscribes ``topic`` (it taps it)."""
+#: The node name rmw gives an endpoint whose node it does not know yet.
+_UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
+
+
+def _tapped_by_shards(node, topic: str) -> bool | None:
+    """Whether a shard's dynamics node publishes or subscribes ``topic`` (it taps it).
+
+    None while an endpoint's node is not known yet (the graph lags the endpoints): ask again.
+    """
     if topic in _NOT_SHARDS:
         return False
     infos = (*node.get_publishers_info_by_topic(topic),
              *node.get_subscriptions_info_by_topic(topic))
-    return any(info.node_name.startswith("boat_dynamics") for info in infos)
+    if any(info.node_name.startswith("boat_dynamics") for info in infos):
+        return True
+    if any(info.node_name in ("", _UNKNOWN_NODE) for info in infos):
+        return None
+    return False
 
 
 def _recorded(node, publisher) -> bool:
@@ -319,7 +330,8 @@ class _Loop:
         if options.role in ("all", "shard"):
             self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
                                          tap=tap, name=_dynamics_name(scenario, options),
-                                         deferred=deferred, stopped=self.stop.is_set)
+                                         deferred=deferred, stopped=self.stop.is_set,
+                                         follow_lockstep=options.shard is None)
             self.nodes.append(self.dynamics)
             if fast and options.shard is not None:
                 self.member = StepMember(*options.shard)
@@ -427,6 +439,8 @@ class _Loop:
             if self.stop.is_set():
                 return False
             self.executor.spin_once(timeout_sec=0.05)
+            if self.conductor is not None:  # a replayer waiting for /clock knows we are here
+                self.conductor.repeat_clock()
         self.clock.epoch = self.parent.epoch
         if self.ocean is not None:
             self.ocean.start(self.clock.epoch)
@@ -477,6 +491,7 @@ class _Loop:
             if self.stop.is_set():
                 return 0
             next_log = conductor.log_missing(next_log)
+            conductor.repeat_clock()
             _spin_pending(self.executor)
         clock.steps = done  # a restarted owner joins where the shards are
         if self.recorder is not None:

@@ -131,13 +131,14 @@ class TopicRecorder:
         skip: topics not to subscribe to (those already tapped at their publisher).
         qos: subscription QoS.
         only: the topics to record (None = every one).
-        skip_if: ``skip_if(node, topic)``: also not to subscribe to ``topic`` (asked once per
-            topic, when it has a publisher).
+        skip_if: ``skip_if(node, topic)``: True = never subscribe to ``topic``, False =
+            record it, None = not known yet, ask again at the next discovery (asked when the
+            topic has a publisher).
     """
 
     def __init__(self, node: Node, bag: BagWriter, stamp_ns: Callable[[], int],
                  skip: set[str], qos: QoSProfile, only: set[str] | None = None,
-                 skip_if: Callable[[Node, str], bool] | None = None) -> None:
+                 skip_if: Callable[[Node, str], bool | None] | None = None) -> None:
         self._node = node
         self._bag = bag
         self._stamp_ns = stamp_ns
@@ -167,9 +168,13 @@ class TopicRecorder:
             publishers = self._node.get_publishers_info_by_topic(topic)
             if not publishers:
                 continue  # known only from a subscriber so far: wait for a publisher's QoS
-            if self._skip_if is not None and self._skip_if(self._node, topic):
-                self._subs[topic] = None
-                continue
+            if self._skip_if is not None:
+                verdict = self._skip_if(self._node, topic)
+                if verdict is None:
+                    continue  # ask again at the next discovery
+                if verdict:
+                    self._subs[topic] = None
+                    continue
             qos = self._qos
             if all(p.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
                    for p in publishers):
