@@ -47,6 +47,13 @@ def _shard(text: str) -> tuple[int, int]:
     return index, count
 
 
+def _too_many_shards(count: int, boats: int) -> str | None:
+    """Why ``count`` shards cannot share ``boats`` boats, or None when they can."""
+    if count > boats:
+        return f"{count} shards for {boats} boat(s); at most one shard per boat"
+    return None
+
+
 def _count(text: str) -> int:
     try:
         value = int(text)
@@ -376,9 +383,8 @@ def _run(args: argparse.Namespace) -> int:
         return _run_only(args, scenario, path, fast)
     if args.processes or args.shards:
         count = len(scenario.boats) if args.processes else args.shards
-        if count > len(scenario.boats):
-            print(f"boatsim: error: --shards {count}: the scenario has "
-                  f"{len(scenario.boats)} boat(s); at most one shard per boat", file=sys.stderr)
+        if (problem := _too_many_shards(count, len(scenario.boats))) is not None:
+            print(f"boatsim: error: --shards {count}: {problem}", file=sys.stderr)
             return 2
         from boat_dynamics.ros.processes import run_processes
 
@@ -435,9 +441,9 @@ def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
             return refuse(f"--shards {args.shards} and shard {rest[0]} disagree")
     else:
         return refuse("expected `ocean` or `shard K/N`")
-    count = shard[1] if shard else shards
-    if count > len(scenario.boats):
-        return refuse(f"{count} shards for {len(scenario.boats)} boat(s); at most one per boat")
+    if (problem := _too_many_shards(shard[1] if shard else shards,
+                                    len(scenario.boats))) is not None:
+        return refuse(problem)
     options = RunOptions(role=role, shard=shard, shards=shards, fast=True,
                          lockstep=args.lockstep, duration=args.duration, record=args.record,
                          exclude_topics=tuple(args.exclude_topics), standalone=True)

@@ -129,8 +129,8 @@ class StepConductor(Node):
                  tap: Tap | None = None) -> None:
         super().__init__("boatsim_clock")
         self.count, self.clock, self.lockstep = count, clock, lockstep
-        self._end = (math.inf if duration is None
-                     else round(duration * clock.rate_hz))  # the last step count
+        #: The step count at which the run ends (inf = none).
+        self.end = math.inf if duration is None else round(duration * clock.rate_hz)
         self._reports: dict[int, tuple[int, int]] = {}  # process -> (steps, commands)
         self.granted = 0
         self.granted_until = 0.0 if lockstep else math.inf
@@ -182,7 +182,7 @@ class StepConductor(Node):
         """The grant: up to WINDOW_STEPS beyond ``done``, within the duration and lockstep."""
         if self.lockstep and sum(c for _, c in self._reports.values()) < self.granted_commands:
             return done  # a command is on its way: no step before it arrives
-        limit = min(done + WINDOW_STEPS, self._end)
+        limit = min(done + WINDOW_STEPS, self.end)
         grant = done
         # the one-process rule, step by step: step from k while k / rate < until - 1e-9
         while grant < limit and grant / self.clock.rate_hz < self.granted_until - 1e-9:

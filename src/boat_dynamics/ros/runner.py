@@ -412,10 +412,7 @@ class _Loop:
             if self.shared_time is not None:
                 self.shared_time.write(self.clock.t)
             self._serve_callbacks(wall0)
-            if self.recorder is not None and time.monotonic() > next_discovery:
-                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
-                self.recorder.discover()
-                self.bag.flush_due(self.clock.stamp_ns())  # a quiet second is on disk too
+            next_discovery = self._record_due(next_discovery)
             if self.dynamics is not None:
                 self.display.update(self.dynamics, self.clock.t)
                 if time.monotonic() > next_type_check:
@@ -500,19 +497,30 @@ class _Loop:
         self.ocean.advance(clock.t)
         self._log_start()
         next_discovery = time.monotonic() + _DISCOVERY_PERIOD
-        end = math.inf if self.duration is None else round(self.duration * clock.rate_hz)
-        while clock.steps < end and not self.stop.is_set():
+        while clock.steps < conductor.end and not self.stop.is_set():
             done = conductor.serve(0.01)
             while clock.steps < done:
                 clock.steps += 1
                 conductor.publish_clock()
                 self.ocean.advance(clock.t)
             self._serve_callbacks(0.0)
-            if self.recorder is not None and time.monotonic() > next_discovery:
-                next_discovery = time.monotonic() + _DISCOVERY_PERIOD
-                self.recorder.discover()
-                self.bag.flush_due(clock.stamp_ns())
+            next_discovery = self._record_due(next_discovery)
         return 0
+
+    def _record_due(self, next_discovery: float) -> float:
+        """Once a second (wall): the recorder looks for new topics, a quiet chunk is written.
+
+        Args:
+            next_discovery: s (time.monotonic()) when it is due.
+
+        Returns:
+            When it is due next.
+        """
+        if self.recorder is None or time.monotonic() <= next_discovery:
+            return next_discovery
+        self.recorder.discover()
+        self.bag.flush_due(self.clock.stamp_ns())  # a quiet second is on disk too
+        return time.monotonic() + _DISCOVERY_PERIOD
 
     def _log_start(self) -> None:
         sim = self.scenario.simulation
