@@ -16,7 +16,7 @@ from rclpy.serialization import serialize_message
 
 from boat_msgs_py.typestore import zero_padding
 
-__all__ = ["SUBSCRIBER_CHECK_PERIOD", "Tap", "TappedPublisher", "type_name"]
+__all__ = ["SUBSCRIBER_CHECK_PERIOD", "GraphWatch", "Tap", "TappedPublisher", "type_name"]
 
 #: How often a publisher whose messages are optional asks whether anyone subscribes, s (wall).
 SUBSCRIBER_CHECK_PERIOD = 1.0
@@ -41,6 +41,34 @@ class Tap:
         self.qos: dict[str, QoSProfile] = {}  # offered QoS per tapped topic
 
 
+class GraphWatch:
+    """The topics the ROS graph knows, asked at most every :data:`SUBSCRIBER_CHECK_PERIOD` s.
+
+    For publishers made only once someone subscribes (:class:`TappedPublisher` ``graph``):
+    one graph query a period for all of them.
+
+    Args:
+        node: the node whose view of the graph to ask.
+    """
+
+    def __init__(self, node: Node) -> None:
+        self._node = node
+        self._topics: frozenset[str] = frozenset()
+        self._next_check = -math.inf
+
+    def has(self, topic: str, now: float) -> bool:
+        """Whether any endpoint (a subscriber, say) is on ``topic``.
+
+        Args:
+            topic: absolute topic name.
+            now: s, the wall clock (time.monotonic()).
+        """
+        if now >= self._next_check:
+            self._topics = frozenset(name for name, _ in self._node.get_topic_names_and_types())
+            self._next_check = now + SUBSCRIBER_CHECK_PERIOD
+        return topic in self._topics
+
+
 class TappedPublisher:
     """A publisher that also hands each serialized message to a :class:`Tap`.
 
@@ -50,14 +78,18 @@ class TappedPublisher:
         topic: absolute topic name.
         qos: QoS profile.
         tap: where to send messages, or None for a plain publisher.
+        graph: make the DDS publisher only once this sees an endpoint on ``topic`` (a
+            subscriber); until then messages go to the tap alone. None = make it now.
     """
 
     def __init__(self, node: Node, msg_class: type, topic: str, qos: QoSProfile,
-                 tap: Tap | None = None) -> None:
+                 tap: Tap | None = None, graph: GraphWatch | None = None) -> None:
         self.topic = topic
         self._subscribed = True  # until first asked
         self._next_check = -math.inf
-        self._pub = node.create_publisher(msg_class, topic, qos)
+        self._graph = graph
+        self._make = lambda: node.create_publisher(msg_class, topic, qos)
+        self._pub = self._make() if graph is None else None
         self._type = type_name(msg_class)
         self._tap = tap
         if tap is not None:
@@ -74,6 +106,10 @@ class TappedPublisher:
         Args:
             now: s, the wall clock (time.monotonic()).
         """
+        if self._pub is None:  # not advertised yet: is anyone on the topic now?
+            if not self._graph.has(self.topic, now):
+                return self._tap is not None
+            self._pub = self._make()
         if self._tap is not None:
             return True
         if now >= self._next_check:
@@ -84,15 +120,18 @@ class TappedPublisher:
     def publish(self, msg: object) -> None:
         """Publish ``msg``, a message or its serialized bytes (and hand it to the tap)."""
         if self._tap is None:
-            self._pub.publish(msg)
+            if self._pub is not None:
+                self._pub.publish(msg)
             return
         # bytes come from a CdrTemplate, whose padding is zero; a bag holds the same bytes for
         # the same values (byte-identical bags of identical runs)
         data = msg if isinstance(msg, bytes) else zero_padding(serialize_message(msg),
                                                                 self._type)
-        self._pub.publish(data)
+        if self._pub is not None:
+            self._pub.publish(data)
         self._tap.sink(self.topic, self._type, data)
 
     def publish_untapped(self, msg: object) -> None:
         """Publish ``msg`` without handing it to the tap (a repeat the bag must not hold)."""
-        self._pub.publish(msg)
+        if self._pub is not None:
+            self._pub.publish(msg)

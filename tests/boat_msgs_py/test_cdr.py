@@ -80,6 +80,25 @@ def test_tf_equals_rclpy_serialization(parent, child, t, v):
     same(tf_template(parent, child).pack(sec, nanosec, *v), msg)
 
 
+names_ = st.text(alphabet="ab_/9", min_size=0, max_size=12)
+
+
+@settings(max_examples=80, deadline=None)
+@given(names_, names_, names_, names_, seconds, st.lists(finite, min_size=13, max_size=13))
+def test_a_relabelled_template_packs_as_a_fresh_one(frame, child, frame2, child2, t, v):
+    """Relabelling (same string lengths: fields kept in place; else located anew) is exact."""
+    sec, nanosec = stamp_parts(t)
+    assert odometry_template(frame2, child2, like=odometry_template(frame, child)).pack(
+        sec, nanosec, *v) == odometry_template(frame2, child2).pack(sec, nanosec, *v)
+    assert tf_template(frame2, child2, like=tf_template(frame, child)).pack(
+        sec, nanosec, *v[:7]) == tf_template(frame2, child2).pack(sec, nanosec, *v[:7])
+    assert wrench_template(child2, like=wrench_template(child)).pack(sec, nanosec, *v[:6]) == (
+        wrench_template(child2).pack(sec, nanosec, *v[:6]))
+    assert pose_template(frame2, like=pose_template(frame)).pack(sec, nanosec, *v[:7]) == (
+        pose_template(frame2).pack(sec, nanosec, *v[:7]))
+    assert twist_template(child2, like=twist_template(child)).pack(sec, nanosec, *v[:6]) == (
+        twist_template(child2).pack(sec, nanosec, *v[:6]))
+
 def test_stamp_parts_rounds_to_the_nanosecond():
     assert stamp_parts(1.5) == (1, 500_000_000)
     assert stamp_parts(2.9999999999) == (3, 0)

@@ -92,11 +92,14 @@ def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, Fle
         InitError: a boat's hull sinks.
     """
     params = []
+    derived: dict[int, BoatParams] = {}  # by id: boats sharing their parameters derive once
     for i, p in enumerate(system.params):
-        try:
-            params.append(_panelled(derive(p), sea))
-        except ValueError as exc:
-            raise InitError(i, "mass", p.mass, str(exc)) from exc
+        if id(p) not in derived:
+            try:
+                derived[id(p)] = _panelled(derive(p), sea)
+            except ValueError as exc:
+                raise InitError(i, "mass", p.mass, str(exc)) from exc
+        params.append(derived[id(p)])
     if any(a is not b for a, b in zip(params, system.params, strict=True)):
         system = System.build(params)
     return system, afloat(system, state, sea)

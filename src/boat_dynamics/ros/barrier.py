@@ -22,6 +22,7 @@ import threading
 import time
 from collections.abc import Callable
 
+from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
@@ -65,15 +66,16 @@ class StepMember(Node):
     Args:
         index: this process's place, 0 .. count - 1.
         count: the dynamics processes of the run.
+        context: the rclpy context (DDS participant) to live in; None = the default one.
     """
 
-    def __init__(self, index: int, count: int) -> None:
-        super().__init__(f"boatsim_step_{index}")
+    def __init__(self, index: int, count: int, context: Context | None = None) -> None:
+        super().__init__(f"boatsim_step_{index}", context=context)
         self.index, self.count = index, count
         self.granted = 0  # steps this process may have taken
         self._done = self.create_publisher(UInt64MultiArray, names.STEP_DONE, STEP_DONE_QOS)
         self.create_subscription(UInt64, names.STEP_GRANT, self._on_grant, STEP_GRANT_QOS)
-        self.executor_ = SingleThreadedExecutor()
+        self.executor_ = SingleThreadedExecutor(context=self.context)
         self.executor_.add_node(self)
         self._last: tuple[int, int] | None = None
         self._next_repeat = 0.0
@@ -123,11 +125,12 @@ class StepConductor(Node):
         duration: s of simulation to grant, None = unbounded.
         lockstep: grant only as far as a replayer grants on /boatsim/lockstep.
         tap: also hand /clock to this (recording), or None.
+        context: the rclpy context (DDS participant) to live in; None = the default one.
     """
 
     def __init__(self, count: int, clock: SimClock, duration: float | None, lockstep: bool,
-                 tap: Tap | None = None) -> None:
-        super().__init__("boatsim_clock")
+                 tap: Tap | None = None, context: Context | None = None) -> None:
+        super().__init__("boatsim_clock", context=context)
         self.count, self.clock, self.lockstep = count, clock, lockstep
         #: The step count at which the run ends (inf = none).
         self.end = math.inf if duration is None else round(duration * clock.rate_hz)
@@ -143,7 +146,7 @@ class StepConductor(Node):
         if lockstep:
             self.create_subscription(Float64MultiArray, names.LOCKSTEP, self._on_lockstep,
                                      COMMAND_QOS)
-        self.executor_ = SingleThreadedExecutor()
+        self.executor_ = SingleThreadedExecutor(context=self.context)
         self.executor_.add_node(self)
         self._wrong: set[int] = set()
         self._next_repeat = 0.0

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -20,6 +20,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
+from rclpy.context import Context
 from rclpy.node import Node
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
@@ -35,6 +36,7 @@ from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.propulsion import MAX_THRUSTERS
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
+from boat_dynamics.physics.scenario.specs import ADVERTISED_WRENCH_BOATS, WrenchTopics
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import cross
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
@@ -61,11 +63,11 @@ from boat_msgs_py.qos import (
     STATE_QOS,
     WAVE_FIELD_QOS,
 )
-from boat_msgs_py.tap import Tap, TappedPublisher
+from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
 from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
 
-__all__ = ["DynamicsNode", "SimClock", "StartInterrupted"]
+__all__ = ["DynamicsNode", "SimClock", "StartInterrupted", "advertises_wrenches"]
 
 
 class StartInterrupted(RuntimeError):
@@ -127,6 +129,35 @@ def _rate_descriptor(description: str, high: float) -> ParameterDescriptor:
     )
 
 
+def advertises_wrenches(setting: WrenchTopics, boats: int, recorder_process: bool) -> bool:
+    """Whether a run makes every boat's ``wrench/<source>`` publishers from the start.
+
+    Args:
+        setting: ``simulation.wrench_topics``.
+        boats: the scenario's boats (all of them, whichever share a process steps).
+        recorder_process: a separate recorder process (``--processes --record`` in real
+            time) records the topics it finds on the graph: they must be advertised.
+    """
+    return (setting == "advertised" or recorder_process
+            or (setting == "auto" and boats <= ADVERTISED_WRENCH_BOATS))
+
+
+def _boat_lines(spec: BoatSpec) -> list[tuple[str, str]]:
+    """(log level, line) of what a boat starts with, for :meth:`DynamicsNode._log_boats`."""
+    lines = [("info", _hydrodynamics(spec.params))]
+    if spec.commands is not None:
+        lines.append(("info", "scripted commands; ignoring command topics"))
+    memory = spec.params.radiation_memory
+    if memory is not None and memory.error > _POOR_FIT:
+        lines.append(("warning",
+                      f"its radiation memory fits the coefficients only within "
+                      f"{100 * memory.error:.0f} % (sharp resonances of the hull's B(omega), "
+                      "such as the gap between catamaran hulls, cannot be fitted); its "
+                      "radiation may be wrong: consider hydrodynamics.radiation: resonance, "
+                      "or buoyancy.pressure: froude_krylov without coefficients"))
+    return lines
+
+
 class DynamicsNode(Node):
     """Steps the boats of a scenario and publishes their odometry and wrenches.
 
@@ -143,13 +174,17 @@ class DynamicsNode(Node):
             on Ctrl-C (raises StartInterrupted) instead of making every boat first.
         follow_lockstep: subscribe to /boatsim/lockstep (False for a shard, whose clock owner
             does: a replayer then waits for the owner, not for a shard).
+        context: the rclpy context (DDS participant) to live in; None = the default one.
+        advertise_wrenches: make every boat's ``wrench/<source>`` publishers now; False = each
+            once someone subscribes to it (:func:`advertises_wrenches`).
     """
 
     def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
                  tap: Tap | None = None, name: str = "boat_dynamics",
                  deferred: bool = False, stopped: Callable[[], bool] | None = None,
-                 follow_lockstep: bool = True) -> None:
-        super().__init__(name)
+                 follow_lockstep: bool = True, context: Context | None = None,
+                 advertise_wrenches: bool = True) -> None:
+        super().__init__(name, context=context)
         sim = scenario.simulation
         self._sim_clock = clock
         self.declare_parameter("rate_hz", sim.rate_hz, _rate_descriptor(
@@ -195,12 +230,20 @@ class DynamicsNode(Node):
         self._remedies: list[str] | None = None  # per boat, for /diagnostics (params only)
         self._clock_template = clock_template()
         self._command_topics: set[str] = set()  # every boat's, filled by _make_boat
+        self._graph = None if advertise_wrenches else GraphWatch(self)  # wrench/*: on demand
+        if not advertise_wrenches:
+            self.get_logger().info(
+                f"the {len(scenario.boats)} boats' wrench/<source> topics are advertised when "
+                "someone subscribes to them (simulation.wrench_topics: "
+                f"{sim.wrench_topics}; `advertised` lists them all from the start, with 9 DDS "
+                "endpoints a boat more to make); a recording holds them all")
         self.boats = []
         for i, spec in enumerate(scenario.boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
                 raise StartInterrupted(f"stopped while making boat {i} of "
                                        f"{len(scenario.boats)}")
             self.boats.append(self._make_boat(spec, i))
+        self._log_boats(scenario.boats)
         self._transforms = TransformPublisher(self, list(scenario.boats), tap)
         self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
@@ -239,17 +282,16 @@ class DynamicsNode(Node):
         ):
             boat.pubs[key] = TappedPublisher(self, cls, names.boat_topic(spec.name, topic), qos,
                                              self._tap)
-        boat.templates = {"odom": odometry_template(names.WORLD_FRAME, child),
-                          "pose": pose_template(names.WORLD_FRAME),
-                          "twist": twist_template(child), "wrench": wrench_template(child)}
+        last = self.boats[-1].templates if self.boats else {}  # relabelled: CdrTemplate.relabel
+        boat.templates = {"odom": odometry_template(names.WORLD_FRAME, child, last.get("odom")),
+                          "pose": pose_template(names.WORLD_FRAME, last.get("pose")),
+                          "twist": twist_template(child, last.get("twist")),
+                          "wrench": wrench_template(child, last.get("wrench"))}
         for source in names.WRENCH_SOURCES:
             boat.pubs[source] = TappedPublisher(
                 self, WrenchStamped, names.wrench_topic(spec.name, source), DIAGNOSTICS_QOS,
-                self._tap)
-        label = spec.name or "(root namespace)"
-        if spec.commands is not None:
-            self.get_logger().info(f"boat {label}: scripted commands; ignoring command topics")
-        else:
+                self._tap, self._graph)
+        if spec.commands is None:
             max_rudder = spec.params.rudder.max_angle
             thrust_topic = names.boat_topic(spec.name, names.CMD_THRUST)
             rudder_topic = names.boat_topic(spec.name, names.CMD_RUDDER)
@@ -266,23 +308,38 @@ class DynamicsNode(Node):
                 self._tap.topics.update({thrust_topic, rudder_topic})
             self._command_topics.update({thrust_topic, rudder_topic})
             self._subscribe_thrusters(boat)
-        pos, q = reference_pose(spec.params, spec.initial)
-        vel = rotation_matrix(q) @ spec.initial.velocity
-        self.get_logger().info(
-            f"boat {label}: mass {spec.params.mass:g} kg, start at "
-            f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the waves at "
-            f"({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
-            f"{names.boat_topic(spec.name, names.ODOM)}")
-        self.get_logger().info(f"boat {label}: {_hydrodynamics(spec.params)}")
-        memory = spec.params.radiation_memory
-        if memory is not None and memory.error > _POOR_FIT:
-            self.get_logger().warning(
-                f"boat {label}: its radiation memory fits the coefficients only within "
-                f"{100 * memory.error:.0f} % (sharp resonances of the hull's B(omega), such as "
-                "the gap between catamaran hulls, cannot be fitted); its radiation may be "
-                "wrong: consider hydrodynamics.radiation: resonance, or buoyancy.pressure: "
-                "froude_krylov without coefficients")
         return boat
+
+    def _log_boats(self, specs: Sequence[BoatSpec]) -> None:
+        """Each boat's start-up lines; beyond :data:`_LOGGED_BOATS` boats, alike ones together.
+
+        A boat's own line (its start, its odometry topic) is left out of the grouped form:
+        1000 boats' 2000 lines took 1.2 s to log and said little.
+        """
+        log = self.get_logger()
+        groups: dict[tuple[str, str], list[str]] = {}  # (level, line) -> boat labels
+        for spec in specs:
+            label = spec.name or "(root namespace)"
+            lines = _boat_lines(spec)
+            if len(specs) <= _LOGGED_BOATS:
+                pos, q = reference_pose(spec.params, spec.initial)
+                vel = rotation_matrix(q) @ spec.initial.velocity
+                log.info(f"boat {label}: mass {spec.params.mass:g} kg, start at "
+                         f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the waves "
+                         f"at ({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
+                         f"{names.boat_topic(spec.name, names.ODOM)}")
+                for level, line in lines:
+                    getattr(log, level)(f"boat {label}: {line}")
+            for level_line in (("info", f"mass {spec.params.mass:g} kg"), *lines):
+                groups.setdefault(level_line, []).append(label)
+        if len(specs) <= _LOGGED_BOATS:
+            return
+        log.info(f"{len(specs)} boats, {specs[0].name} .. {specs[-1].name}, each publishing "
+                 f"{names.boat_topic('<boat>', names.ODOM)} (more on /diagnostics)")
+        for (level, line), labels in groups.items():
+            who = (f"{len(labels)} boats ({labels[0]} .. {labels[-1]})" if len(labels) > 1
+                   else f"boat {labels[0]}")
+            getattr(log, level)(f"{who}: {line}")
 
     def _subscribe_thrusters(self, boat: _Boat) -> None:
         """Per named thruster: ``thrusters/<name>/thrust`` and, if steerable, ``.../angle``."""
@@ -632,6 +689,8 @@ _COMMAND_TYPE = "std_msgs/msg/Float64"
 
 #: A radiation memory fitting its coefficients worse than this (relative) is warned about.
 _POOR_FIT = 0.1
+#: Up to this many boats, a node logs each boat's start-up lines; beyond, alike ones together.
+_LOGGED_BOATS = 20
 
 
 def _hydrodynamics(params: BoatParams) -> str:

@@ -31,7 +31,13 @@ from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
 from boat_dynamics.process import SharedTime, start_child, stop_processes, watch_stdin
 from boat_dynamics.ros.barrier import StepConductor, StepMember, shard_slice
-from boat_dynamics.ros.node import DynamicsNode, SimClock, StartInterrupted
+from boat_dynamics.ros.node import (
+    DynamicsNode,
+    SimClock,
+    StartInterrupted,
+    advertises_wrenches,
+)
+from boat_dynamics.ros.participants import PROFILE, Participants, use_profile
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
 from boat_msgs_py import names
 from boat_msgs_py.qos import RECORD_QOS
@@ -42,6 +48,8 @@ __all__ = ["RunOptions", "run"]
 #: Beyond this many publishers and subscriptions, a stopping process does not destroy them
 #: one by one (2,408 took 2.8 s, 14,008 took 67 s: quadratic, measured).
 _DESTROY_LIMIT = 2000
+#: Beyond this many boats, say when the process's DDS start-up grows as the fleet's square.
+_QUADRATIC_START = 100
 #: How long a --processes child waits for the recorder to subscribe to it, s (wall).
 _RECORDER_TIMEOUT = 60.0
 #: How long to wait for the dynamics node to receive the first wave field, s (wall).
@@ -190,6 +198,8 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
     if options.epoch is not None and not fast:  # joining a run that started at the epoch
         clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
+    advertise = advertises_wrenches(sim.wrench_topics, len(scenario.boats),
+                                    options.await_recorder)  # the whole fleet's count
     if options.role == "shard":  # a share of the boats, joining at clock.t
         scenario = replace(scenario, boats=scenario.boats[shard_slice(
             *options.shard, len(scenario.boats))])
@@ -201,9 +211,12 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     previous = {sig: signal.signal(sig, lambda *_: stop.set())
                 for sig in (signal.SIGINT, signal.SIGTERM)}
     parent = _Parent(stop) if options.supervised or options.ready_fd is not None else None
+    dds_note = use_profile()  # before the process's first participant
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     loop = _Loop(scenario, options, clock, fast, bag, stop, _Status(status, len(scenario.boats)))
     loop.parent = parent
+    loop.dds_note = dds_note
+    loop.advertise_wrenches = advertise
     code = 0
     try:
         code = loop.run()
@@ -213,6 +226,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         code, loop.abandoned = 0, True
     finally:
         loop.close(status)
+        loop.participants.shutdown()
         rclpy.try_shutdown()
         for sig, handler in previous.items():
             signal.signal(sig, handler)
@@ -319,6 +333,9 @@ class _Loop:
         self.abandoned = False  # the DDS endpoints are left to the process's exit
         self.logger = rclpy.logging.get_logger("boatsim")  # the first node's, once made
         self.nodes = []
+        self.participants = Participants()  # the nodes' participants but the default one
+        self.dds_note: str | None = None  # why boatsim's Fast DDS profile is not in use
+        self.advertise_wrenches = True  # every wrench/<source> publisher from the start
         self._next_spin = 0.0  # fast mode: wall time (monotonic) of the next callback round
 
     def _make_nodes(self) -> None:
@@ -327,38 +344,53 @@ class _Loop:
         scenario = self.scenario
         tap = bag.tap(clock.stamp_ns) if bag is not None else None
         deferred = options.ready_fd is not None  # the epoch comes with the parent's go
-        if options.role in ("all", "shard"):
-            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
-                                         tap=tap, name=_dynamics_name(scenario, options),
-                                         deferred=deferred, stopped=self.stop.is_set,
-                                         follow_lockstep=options.shard is None)
-            self.nodes.append(self.dynamics)
-            if fast and options.shard is not None:
-                self.member = StepMember(*options.shard)
-                self.nodes.append(self.member)
         if options.role == "all":  # the surface service beside this process (module docs)
             # its own session: a terminal's Ctrl-C is this process's to handle
             self.shared_time = SharedTime()
             self.surface_server = start_child(["_surface", "--time-file",
                                                str(self.shared_time.path)],
                                               start_new_session=True)
+        # The ocean first: its participant discovers the boats' endpoints while they are made
+        # (on the other core), and the wave field reaches the dynamics node before them.
         if options.role in ("all", "ocean"):
             self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
                                    epoch=None if deferred else clock.epoch, tap=tap,
                                    serve_surface=options.role == "ocean",
-                                   surface_centers=(self.dynamics.boat_positions
-                                                    if self.dynamics else None),
+                                   surface_centers=(lambda: self.dynamics.boat_positions())
+                                   if options.role == "all" else None,
                                    environment=scenario.environment)
             self.nodes.append(self.ocean)
             if fast and options.shards:
                 self.conductor = StepConductor(options.shards, clock, self.duration,
-                                               options.lockstep, tap)
+                                               options.lockstep, tap,
+                                               context=self.ocean.context)  # as the member
                 self.nodes.append(self.conductor)
-        self.logger = self.nodes[0].get_logger()
+        if options.role in ("all", "shard"):
+            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
+                                         tap=tap, name=_dynamics_name(scenario, options),
+                                         deferred=deferred, stopped=self.stop.is_set,
+                                         follow_lockstep=options.shard is None,
+                                         advertise_wrenches=self.advertise_wrenches,
+                                         context=self.participants.new() if self.nodes else None)
+            self.nodes.append(self.dynamics)
+            if fast and options.shard is not None:
+                # in the dynamics node's participant: they never talk to each other, and a
+                # participant of its own made 100 boats over 2 shards 2.5x slower (measured)
+                self.member = StepMember(*options.shard, context=self.dynamics.context)
+                self.nodes.append(self.member)
+        self.logger = (self.dynamics if self.dynamics is not None else self.nodes[0]).get_logger()
+        if self.dds_note is not None and len(scenario.boats) > _QUADRATIC_START:
+            self.logger.info(f"boatsim's Fast DDS profile is not loaded: {self.dds_note}; "
+                             "each DDS endpoint is paired with every other of its participant "
+                             "as it is made: start-up grows as the square of the fleet "
+                             f"(boat_dynamics/ros/{PROFILE.name} avoids it)")
         if bag is not None and options.role != "shard":
             # The sim's own topics are tapped at their publishers; the recorder takes the rest
             # (with shards: what no shard taps; it looks once every shard has reported).
-            self.recorder = TopicRecorder(self.nodes[0], bag, clock.stamp_ns,
+            self.recorder_node = rclpy.create_node(names.RECORDER_NODE,
+                                                   context=self.participants.new())
+            self.nodes.append(self.recorder_node)
+            self.recorder = TopicRecorder(self.recorder_node, bag, clock.stamp_ns,
                                           skip=tap.topics | _BARRIER_TOPICS,
                                           qos=RECORD_QOS,
                                           skip_if=_tapped_by_shards if options.shards else None)

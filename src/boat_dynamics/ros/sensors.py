@@ -65,8 +65,10 @@ class TransformPublisher:
 
     def __init__(self, node: Node, boats: list[BoatSpec], tap: Tap | None) -> None:
         self._pub = TappedPublisher(node, TFMessage, names.TF, TF_QOS, tap)
-        self._templates = [tf_template(names.WORLD_FRAME, names.child_frame(b.name))
-                           for b in boats]
+        self._templates = []
+        for b in boats:  # each the last one relabelled (CdrTemplate.relabel)
+            self._templates.append(tf_template(names.WORLD_FRAME, names.child_frame(b.name),
+                                               self._templates[-1] if self._templates else None))
         self._static = [(names.child_frame(b.name), names.sensor_frame(b.name, s.name),
                          s.position, _IDENTITY) for b in boats for s in b.sensors
                         if not isinstance(s, OdometrySpec)]

@@ -24,6 +24,7 @@ from rcl_interfaces.msg import (
     ParameterType,
     SetParametersResult,
 )
+from rclpy.context import Context
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from sensor_msgs.msg import PointCloud2, PointField
@@ -144,13 +145,15 @@ class OceanNode(Node):
             calm.
         serve_surface: serve /ocean/sample_surface here; False when a surface server
             (:mod:`ocean_sim.ros.surface_server`) serves it in a process of its own.
+        context: the rclpy context (DDS participant) to live in; None = the default one.
     """
 
     def __init__(self, sea: WaveField, now: Callable[[], float], epoch: float | None = 0.0,
                  tap: Tap | None = None,
                  surface_centers: Callable[[], np.ndarray] | None = None,
-                 environment: Environment | None = None, serve_surface: bool = True) -> None:
-        super().__init__("ocean")
+                 environment: Environment | None = None, serve_surface: bool = True,
+                 context: Context | None = None) -> None:
+        super().__init__("ocean", context=context)
         self._sea = sea
         self._now = now
         self._epoch = epoch

@@ -245,3 +245,37 @@ def test_a_hull_smaller_than_a_centimetre_is_refused():
     assert err.value.key == "boats[0].hull.length"
     assert parse_scenario({"boats": [{"hull": {"length": 0.01, "beam": 0.01,
                                                "height": 0.01}}]}).boats
+
+
+def test_wrench_topics_is_one_of_its_choices():
+    assert parse_scenario({}).simulation.wrench_topics == "auto"
+    for value in ("advertised", "on_subscription"):
+        sim = parse_scenario({"simulation": {"wrench_topics": value}}).simulation
+        assert sim.wrench_topics == value
+    with pytest.raises(ScenarioError) as refused:
+        parse_scenario({"simulation": {"wrench_topics": "sometimes"}})
+    assert "simulation.wrench_topics" in str(refused.value)
+    assert "auto, advertised, on_subscription" in str(refused.value)
+
+
+def test_alike_boats_share_their_parameters_and_keep_their_own_poses():
+    import numpy as np
+
+    from boat_dynamics.physics.pipeline import init_scenario
+
+    def boat(name, x, **extra):
+        return {"name": name, "initial_pose": {"position": [x, 0.0, 0.0]}, **extra}
+
+    fleet = parse_scenario({"boats": [boat("a", 0.0), boat("b", 20.0),
+                                      boat("c", 40.0, mass=3000.0), boat("d", 60.0)]})
+    a, b, c, d = fleet.boats
+    assert a.params is b.params is d.params and c.params is not a.params
+    assert [s.initial.position[0] for s in fleet.boats] == [0.0, 20.0, 40.0, 60.0]
+    alone = parse_scenario({"boats": [boat("b", 20.0), boat("x", 99.0, mass=3000.0)]})
+    ready, ready_alone = init_scenario(fleet), init_scenario(alone)
+    assert ready.boats[0].params is ready.boats[1].params  # derived once
+    for field in ("damping_linear", "damping_quadratic", "center_of_mass"):
+        np.testing.assert_array_equal(getattr(ready.boats[1].params, field),
+                                      getattr(ready_alone.boats[0].params, field))
+    assert ready.boats[1].params.control.height_offset == (
+        ready_alone.boats[0].params.control.height_offset)

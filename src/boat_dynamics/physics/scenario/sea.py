@@ -7,7 +7,11 @@ from typing import Any
 
 from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only
 from boat_dynamics.physics.scenario.sensors import datum_block
-from boat_dynamics.physics.scenario.specs import ScenarioError, SimulationSettings
+from boat_dynamics.physics.scenario.specs import (
+    WRENCH_TOPICS,
+    ScenarioError,
+    SimulationSettings,
+)
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.environment import GUST_MODELS, Environment, Wind
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
@@ -25,7 +29,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
     d = mapping(raw, key)
     only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
                    "seed", "gravity", "water_density", "cmd_timeout", "substeps",
-                   "wave_precision", "datum", "publish_tf"))
+                   "wave_precision", "datum", "publish_tf", "wrench_topics"))
     rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
     diag = number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
@@ -56,6 +60,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
         wave_precision=choice(d, "wave_precision", key, "float32", PRECISIONS),
         datum=datum_block(d.get("datum")),
         publish_tf=flag(d, "publish_tf", key, True),
+        wrench_topics=choice(d, "wrench_topics", key, "auto", WRENCH_TOPICS),
     )
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import reprlib
 from dataclasses import dataclass, field
+from typing import Literal, get_args
 
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.model import BoatParams, BoatState
@@ -51,6 +52,16 @@ def shortened(value: object) -> str:
     return text if len(text) <= _SHORT_MAX else text[:_SHORT_MAX - 3] + "..."
 
 
+#: When a boat's ``wrench/<source>`` publishers exist: ``advertised`` from the start (listed
+#: by ``topic list``), ``on_subscription`` once someone subscribes (9 fewer DDS endpoints a
+#: boat: a faster start for fleets of hundreds), ``auto`` advertised up to
+#: :data:`ADVERTISED_WRENCH_BOATS` boats in the scenario.
+WrenchTopics = Literal["auto", "advertised", "on_subscription"]
+WRENCH_TOPICS: tuple[str, ...] = get_args(WrenchTopics)
+#: ``wrench_topics: auto`` advertises every boat's wrench topics up to this many boats.
+ADVERTISED_WRENCH_BOATS = 100
+
+
 @dataclass(frozen=True)
 class SimulationSettings:
     """The ``simulation:`` block.
@@ -70,6 +81,7 @@ class SimulationSettings:
             within about 1e-5 m of float64) or ``float64``.
         datum: the world origin on WGS-84 (GNSS fixes).
         publish_tf: publish ``/tf`` (world -> each boat's base_link) from the true pose.
+        wrench_topics: when the ``wrench/<source>`` publishers exist (:data:`WrenchTopics`).
     """
 
     rate_hz: float = 100.0
@@ -85,6 +97,7 @@ class SimulationSettings:
     wave_precision: Precision = "float32"
     datum: Datum = field(default_factory=Datum)
     publish_tf: bool = True
+    wrench_topics: WrenchTopics = "auto"
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,58 @@
+"""`simulation.wrench_topics: on_subscription`: a boat's wrench topics appear when subscribed.
+
+Real time, not --fast: the probe must find the graph and subscribe while the run goes on.
+Windows are counted in messages (simulation time), never in wall time.
+"""
+
+import numpy as np
+import yaml
+from geometry_msgs.msg import WrenchStamped
+from nav_msgs.msg import Odometry
+
+from boat_msgs_py.convert import time_to_seconds
+
+
+def _scenario(tmp_path, **simulation):
+    path = tmp_path / "two.yaml"
+    path.write_text(yaml.safe_dump({"simulation": simulation, "boats": [
+        {"name": "alpha"}, {"name": "bravo", "initial_pose": {"position": [20.0, 0.0, 0.0]}}]}))
+    return path
+
+
+def _topics(probe):
+    return {name for name, _ in probe.node.get_topic_names_and_types()}
+
+
+def test_wrench_topics_on_subscription_are_made_when_someone_subscribes(boatsim, probe,
+                                                                         tmp_path):
+    sim = boatsim("run", str(_scenario(tmp_path, wrench_topics="on_subscription")))
+    odom = []
+    probe.node.create_subscription(Odometry, "/alpha/odom", odom.append, 10)
+    probe.spin_until(lambda: len(odom) > 10, 60.0, "/alpha/odom")
+    before = _topics(probe)
+    assert {"/alpha/odom", "/alpha/pose", "/bravo/twist"} <= before
+    assert not [t for t in before if "/wrench/" in t]  # 18 endpoints not made
+    total = []
+    probe.node.create_subscription(WrenchStamped, "/alpha/wrench/total", total.append, 10)
+    probe.spin_until(lambda: len(total) >= 5, 60.0, "/alpha/wrench/total once subscribed")
+    stamps = np.array([time_to_seconds(w.header.stamp) for w in total])
+    np.testing.assert_allclose(np.diff(stamps), 0.1, atol=1e-6)  # diagnostics_rate_hz 10
+    assert total[-1].header.frame_id == "alpha/base_link"
+    after = {t for t in _topics(probe) if "/wrench/" in t}
+    assert after == {"/alpha/wrench/total"}  # only what someone asked for
+    assert sim.stop() == 0
+    assert "wrench/<source> topics are advertised when someone subscribes" in sim.output()
+
+
+def test_a_recording_holds_every_wrench_all_the_same(boatsim, tmp_path):
+    from boat_dynamics.tools.bags import read_bag
+
+    bag = tmp_path / "bag"
+    sim = boatsim("run", str(_scenario(tmp_path, wrench_topics="on_subscription")), "--fast",
+                  "--duration", "1", "--record", str(bag))
+    assert sim.wait(timeout=90) == 0, sim.output()
+    topics = [f"/{b}/wrench/{s}" for b in ("alpha", "bravo")
+              for s in ("buoyancy", "damping", "drag", "thrust", "rudder", "diffraction",
+                        "slamming", "wind", "total")]
+    msgs = read_bag(bag, topics)
+    assert {t: len(msgs[t]) for t in topics} == {t: 11 for t in topics}  # 0 .. 1 s at 10 Hz
