@@ -24,14 +24,22 @@ keep_freed_memory()
 __all__ = ["main"]
 
 
-def _positive_seconds(text: str) -> float:
+def _positive(text: str, what: str = "number") -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+        raise argparse.ArgumentTypeError(f"{text!r} is not {what}") from None
     if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite number of seconds > 0")
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite {what} > 0")
     return value
+
+
+def _positive_seconds(text: str) -> float:
+    return _positive(text, "number of seconds")
+
+
+def _speed_factor(text: str) -> float:
+    return _positive(text, "speed factor (a multiple of real time)")
 
 
 def _shard(text: str) -> tuple[int, int]:
@@ -54,14 +62,22 @@ def _too_many_shards(count: int, boats: int) -> str | None:
     return None
 
 
-def _count(text: str) -> int:
+def _integer(text: str, low: int) -> int:
     try:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r}: must be at least 1")
+    if value < low:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be at least {low}")
     return value
+
+
+def _count(text: str) -> int:
+    return _integer(text, 1)
+
+
+def _whole_number(text: str) -> int:
+    return _integer(text, 0)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -73,10 +89,60 @@ def _parser() -> argparse.ArgumentParser:
     _add_bag_verbs(verbs)
     _add_rao(verbs)
     _add_hydro(verbs)
+    _add_introspection(verbs)
     teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
     teleop.add_argument("--ns", default="", metavar="NAME",
                         help="the boat's namespace (default: the root namespace)")
     return parser
+
+
+def _add_introspection(verbs) -> None:
+    """``topic``, ``node``, ``param``: ``ros2``'s verbs, for an install without ``ros2``."""
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("--spin-time", type=_positive_seconds, default=1.0, metavar="S",
+                        help="seconds of discovery before answering (default 1)")
+    topic = verbs.add_parser("topic", help="as `ros2 topic`: list, info, echo, hz, pub")
+    sub = topic.add_subparsers(dest="action", metavar="ACTION", required=True)
+    listing = sub.add_parser("list", parents=[common], help="the topics on the graph")
+    listing.add_argument("-t", "--show-types", action="store_true")
+    listing.add_argument("-c", "--count-topics", action="store_true")
+    info = sub.add_parser("info", parents=[common], help="a topic's type and endpoints")
+    info.add_argument("topic_name")
+    info.add_argument("-v", "--verbose", action="store_true",
+                      help="each endpoint's node and QoS")
+    echo = sub.add_parser("echo", parents=[common], help="print a topic's messages as YAML")
+    echo.add_argument("topic_name")
+    echo.add_argument("--once", action="store_true", help="the first message, then exit")
+    echo.add_argument("--full-length", "-f", action="store_true",
+                      help="print long arrays whole")
+    hz = sub.add_parser("hz", parents=[common],
+                        help="a topic's rate, by wall-clock arrival (ros2's --wall-time)")
+    hz.add_argument("topic_name")
+    hz.add_argument("--window", "-w", type=_count, default=10000, metavar="N")
+    for p in (echo, hz):
+        p.add_argument("--timeout", type=_positive_seconds, metavar="S",
+                       help="stop after S seconds (default: at Ctrl-C)")
+    pub = sub.add_parser("pub", parents=[common], help="publish a message from YAML values")
+    pub.add_argument("topic_name")
+    pub.add_argument("message_type", help="e.g. std_msgs/msg/Float64")
+    pub.add_argument("values", nargs="?", default="{}", help="YAML, e.g. '{data: 0.5}'")
+    pub.add_argument("-r", "--rate", type=_positive, default=1.0, metavar="HZ")
+    pub.add_argument("-1", "--once", action="store_true", help="publish one message, exit")
+    pub.add_argument("-t", "--times", type=_count, metavar="N", help="publish N, then exit")
+    pub.add_argument("-w", "--wait-matching-subscriptions", type=_whole_number, metavar="N",
+                     help="first wait for N matching subscriptions (default 1 with --once or "
+                          "--times, else 0)")
+    node = verbs.add_parser("node", help="as `ros2 node`: list")
+    node.add_subparsers(dest="action", metavar="ACTION", required=True).add_parser(
+        "list", parents=[common], help="the nodes on the graph")
+    param = verbs.add_parser("param", help="as `ros2 param`: list, get, set, dump")
+    psub = param.add_subparsers(dest="action", metavar="ACTION", required=True)
+    for action, extra in (("list", ()), ("get", ("name",)), ("set", ("name", "value")),
+                          ("dump", ())):
+        p = psub.add_parser(action, parents=[common], help=f"`ros2 param {action}`")
+        p.add_argument("node_name", help="e.g. /boat_dynamics")
+        for name in extra:
+            p.add_argument(name)
 
 
 def _add_run(verbs) -> None:
@@ -155,21 +221,31 @@ def _add_bag_verbs(verbs) -> None:
                         help="topics not to record")
     compare = verbs.add_parser(
         "compare", help="compare two bags topic by topic within tolerances",
-        description="Align two bags by message stamp and report per topic and field the "
-                    "largest difference. Exit 0 within tolerance, 1 outside, 2 unreadable.")
+        description="Align two bags by message stamp and report per topic every field that "
+                    "moved, with its largest difference, the farthest outside its tolerance "
+                    "first. Numeric arrays are compared element by element (a PointCloud2 by "
+                    "its points' fields), texts as equal or different. Exit 0 within "
+                    "tolerance, 1 outside, 2 unreadable.")
     compare.add_argument("a", metavar="A")
     compare.add_argument("b", metavar="B")
     compare.add_argument("--topics", nargs="+", metavar="TOPIC")
     compare.add_argument("--tol", action="append", default=[], metavar="FIELD=VALUE",
                          help="absolute tolerance for fields matching FIELD (fnmatch, e.g. "
                               "'*.position.*=0.01' or '/odom:twist.*=1e-3'); default 1e-9")
+    compare.add_argument("--max-fields", type=_whole_number, default=20, metavar="N",
+                         help="fields shown per topic, the farthest outside first (0: every "
+                              "one; default 20)")
     reindex = verbs.add_parser(
         "reindex", help="make a bag whose recording was killed readable again",
         description="Rebuild the MCAP summary and metadata.yaml of BAG (as `ros2 bag "
                     "reindex`): every message of the complete chunks is kept; a killed "
                     "recording loses at most its last second.")
     reindex.add_argument("bag", metavar="BAG")
-    plot = verbs.add_parser("plot", help="plot a recorded run to a PNG")
+    plot = verbs.add_parser(
+        "plot", help="plot a recorded run: a PNG per boat",
+        description="Per boat: trajectory with heading marks, commands, speed and yaw rate, "
+                    "heading, heave, roll and pitch, and the wrench sources' surge force and "
+                    "yaw moment. One boat: FILE.png (default BAG.png); several: FILE_<boat>.png.")
     plot.add_argument("bag", metavar="BAG")
     plot.add_argument("-o", "--output", metavar="FILE.png")
     replay = verbs.add_parser(
@@ -179,7 +255,7 @@ def _add_bag_verbs(verbs) -> None:
                     "--fast --lockstep` the simulation never runs ahead of the commands.")
     replay.add_argument("bag", metavar="BAG")
     replay.add_argument("--topics", nargs="+", metavar="TOPIC")
-    replay.add_argument("--rate", type=_positive_seconds, default=1.0, metavar="R",
+    replay.add_argument("--rate", type=_speed_factor, default=1.0, metavar="R",
                         help="speed factor against a real-time simulation (default 1)")
     replay.add_argument("--timeout", type=_positive_seconds, default=30.0, metavar="S",
                         help="seconds to wait for the simulation (default 30)")
@@ -283,6 +359,52 @@ def _hydro(args: argparse.Namespace) -> int:
     return 0
 
 
+def _introspect(args: argparse.Namespace) -> int:
+    """``topic``, ``node`` and ``param``: print as ``ros2`` would; 1 when not found."""
+    from boat_dynamics.tools import introspection as ros
+    from boat_msgs_py.fields import FieldError
+
+    out, verb = sys.stdout, f"{args.verb} {args.action}"
+    try:
+        with ros.session(args.spin_time) as s:
+            if args.verb == "node":
+                lines = ros.node_list(s)
+            elif args.verb == "param":
+                lines = _param(ros, s, args)
+            elif args.action in ("list", "info"):
+                lines = (ros.topic_list(s, args.show_types, args.count_topics)
+                         if args.action == "list" else
+                         ros.topic_info(s, args.topic_name, args.verbose))
+            elif args.action == "echo":
+                ros.topic_echo(s, args.topic_name, out, args.once, args.full_length,
+                               timeout=args.timeout)
+                return 0
+            elif args.action == "hz":
+                ros.topic_hz(s, args.topic_name, out, args.window, timeout=args.timeout)
+                return 0
+            else:
+                times = 1 if args.once else args.times
+                wait = args.wait_matching_subscriptions
+                ros.topic_pub(s, args.topic_name, args.message_type, args.values, out,
+                              args.rate, times, (1 if times else 0) if wait is None else wait)
+                return 0
+    except (ros.IntrospectionError, FieldError) as exc:
+        print(f"boatsim {verb}: error: {exc}", file=sys.stderr)
+        return 1
+    print("\n".join(lines))
+    return 0
+
+
+def _param(ros, s, args) -> list[str]:
+    if args.action == "list":
+        return [f"{args.node_name}:", *ros.param_list(s, args.node_name)]
+    if args.action == "get":
+        return [ros.param_get(s, args.node_name, args.name)]
+    if args.action == "set":
+        return [ros.param_set(s, args.node_name, args.name, args.value)]
+    return [ros.param_dump(s, args.node_name).rstrip("\n")]
+
+
 def _compare(args: argparse.Namespace) -> int:
     from boat_dynamics.tools.bags import BagError, compare_bags
 
@@ -303,7 +425,7 @@ def _compare(args: argparse.Namespace) -> int:
     except BagError as exc:
         print(f"boatsim compare: error: {exc}", file=sys.stderr)
         return 2
-    print(result.report())
+    print(result.report(args.max_fields))
     return 0 if result.ok else 1
 
 
@@ -357,6 +479,9 @@ def _run(args: argparse.Namespace) -> int:
     except ScenarioError as exc:
         print(f"boatsim: error: invalid scenario {path}: {exc}", file=sys.stderr)
         return 2
+    if args.verb != "_node":  # the parent says it once
+        for note in scenario.notes:
+            print(f"boatsim: warning: {path}: {note}", file=sys.stderr)
     if args.verb == "_node":
         if (args.epoch is None) == (args.ready_fd is None):
             print("boatsim _node: error: exactly one of --epoch and --ready-fd",
@@ -490,6 +615,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _query(args)
         if args.verb == "compare":
             return _compare(args)
+        if args.verb in ("topic", "node", "param"):
+            return _introspect(args)
         if args.verb == "rao":
             return _rao(args)
         if args.verb == "hydro":
@@ -513,7 +640,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             from boat_dynamics.tools.plot import plot_bag
 
             try:
-                print(f"boatsim: wrote {plot_bag(args.bag, args.output)}")
+                for path in plot_bag(args.bag, args.output):
+                    print(f"boatsim: wrote {path}")
                 return 0
             except BagError as exc:
                 print(f"boatsim plot: error: {exc}", file=sys.stderr)

@@ -30,6 +30,7 @@ __all__ = [
     "TF_STATIC_QOS",
     "WAVE_FIELD_QOS",
     "latched",
+    "serving",
 ]
 
 #: cmd_thrust / cmd_rudder subscriptions: reliable, last 10; matches a plain
@@ -100,3 +101,20 @@ def latched(qos: QoSProfile) -> QoSProfile:
     """``qos`` made transient-local: a late subscriber to a latched topic gets its last message."""
     return QoSProfile(depth=qos.depth, reliability=qos.reliability,
                       durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+
+def serving(offered: list[QoSProfile], depth: int = 10) -> QoSProfile:
+    """A subscription QoS every one of ``offered`` (the publishers') can serve.
+
+    As ``ros2 topic echo`` chooses it: reliable if every publisher is, transient-local if
+    every one is (a latched topic then reaches a late subscriber), else best effort and
+    volatile.
+    """
+    reliable = bool(offered) and all(q.reliability == ReliabilityPolicy.RELIABLE
+                                     for q in offered)
+    latched_all = bool(offered) and all(q.durability == DurabilityPolicy.TRANSIENT_LOCAL
+                                        for q in offered)
+    return QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE if reliable
+                      else ReliabilityPolicy.BEST_EFFORT,
+                      durability=DurabilityPolicy.TRANSIENT_LOCAL if latched_all
+                      else DurabilityPolicy.VOLATILE)

@@ -5,7 +5,7 @@ import pytest
 from boat_dynamics.cli import main
 
 VERBS = ("run", "query", "record", "compare", "reindex", "plot", "replay", "rao", "hydro",
-         "teleop")
+         "topic", "node", "param", "teleop")
 
 
 def test_help_lists_the_public_verbs_and_hides_the_internal_one(capsys):
@@ -54,3 +54,11 @@ def test_reindex_of_a_missing_bag_exits_2_with_one_line(tmp_path, capsys):
     assert main(["reindex", str(tmp_path / "nothing")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("boatsim reindex: error:") and "nothing" in err and "\n" not in err
+
+
+def test_replay_rate_is_a_speed_factor_not_seconds(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["replay", "bag", "--rate", "0"])
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert "--rate: '0': must be a finite speed factor" in err and "seconds" not in err

@@ -102,7 +102,11 @@ def test_sea_state_parameters_change_at_run_time_and_bad_changes_are_refused(boa
     assert list(again.values[0].double_array_value) == [0.5, 0.2]
     assert sim.stop() == 0
     out = sim.output()
-    assert "new sea state: 2 components" in out and "updated sea state" in out
+    assert "new sea state: 2 components" in out
+    # the dynamics node has the new sea: as an update, or as its first one when the change
+    # came before it subscribed (the ocean's node is made first; seen once with both cores busy)
+    assert ("updated sea state: 2 components" in out
+            or "received sea state: 2 components" in out), out
 
 
 def test_surface_cloud_is_the_surface_around_the_boat(boatsim, probe):

@@ -111,7 +111,7 @@ def test_plot_writes_a_png_of_the_expected_size(two_runs, tmp_path):
     data = target.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20_000
     width, height = struct.unpack(">II", data[16:24])
-    assert (width, height) == (1200, 900)
+    assert (width, height) == (1200, 1500)  # 4 x 2 panels for the one boat
 
 
 def test_standalone_record_picks_up_topics_including_latched_ones(boatsim, tmp_path):

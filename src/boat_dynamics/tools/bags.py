@@ -20,6 +20,7 @@ import numpy as np
 from boat_msgs_py import names
 
 __all__ = [
+    "DEFAULT_MAX_FIELDS",
     "BagError",
     "Comparison",
     "FieldDifference",
@@ -114,13 +115,42 @@ def read_bag_topics(path: str | Path) -> list[str]:
         return sorted({c.topic for c in reader.connections})
 
 
-def flatten(msg: object, prefix: str = "") -> dict[str, float | str]:
-    """Leaf fields of a message as {"pose.pose.position.x": value}; arrays as "data[3]".
+#: numpy dtypes of sensor_msgs/PointField datatypes (1 INT8 .. 8 FLOAT64).
+_POINT_TYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
 
-    Numbers become floats, strings stay strings; the header is left out (it is the key the
-    messages are aligned on).
+
+def _cloud_points(msg: object, prefix: str) -> dict[str, np.ndarray]:
+    """A PointCloud2's points by field: {"points.x": (N,) float64, ...} (N = width x height).
+
+    Raises:
+        BagError: a field type or layout the message's own description does not allow.
     """
-    out: dict[str, float | str] = {}
+    order = ">" if msg.is_bigendian else "<"
+    try:
+        dtype = np.dtype({"names": [f.name for f in msg.fields],
+                          "formats": [(order + _POINT_TYPES[f.datatype], (f.count,))
+                                      if f.count > 1 else order + _POINT_TYPES[f.datatype]
+                                      for f in msg.fields],
+                          "offsets": [f.offset for f in msg.fields],
+                          "itemsize": msg.point_step})
+        raw = np.asarray(msg.data, dtype=np.uint8).reshape(msg.height, msg.row_step)
+        points = np.frombuffer(raw[:, :msg.width * msg.point_step].tobytes(), dtype=dtype)
+    except (KeyError, ValueError, TypeError) as exc:
+        raise BagError(f"{prefix or 'a PointCloud2'}: its points do not match its fields "
+                       f"({_one_line(exc)})") from exc
+    base = f"{prefix}.points" if prefix else "points"
+    return {f"{base}.{name}": points[name].astype(np.float64).ravel() for name in dtype.names}
+
+
+def flatten(msg: object, prefix: str = "") -> dict[str, float | str | np.ndarray]:
+    """Leaf fields of a message as {"pose.pose.position.x": value}.
+
+    Numbers become floats, strings stay strings, numeric arrays stay arrays (one entry,
+    compared element by element), a PointCloud2's bytes become its points by field
+    (``points.x``, ``points.normal_z``, ...); sequences of messages are indexed
+    (``status[0].level``). The header is left out (it is the key messages are aligned on).
+    """
+    out: dict[str, float | str | np.ndarray] = {}
     names = getattr(msg, "__dataclass_fields__", None)
     if names is None:
         if isinstance(msg, (bool, int, float, np.integer, np.floating)):
@@ -128,19 +158,33 @@ def flatten(msg: object, prefix: str = "") -> dict[str, float | str]:
         elif isinstance(msg, str):
             out[prefix] = msg
         elif isinstance(msg, (bytes, bytearray)):
-            out[prefix] = msg.hex()
+            out[prefix] = np.frombuffer(bytes(msg), dtype=np.uint8).astype(np.float64)
         elif isinstance(msg, np.ndarray):
-            for i, v in enumerate(msg.ravel().tolist()):
-                out[f"{prefix}[{i}]"] = float(v)
+            out[prefix] = msg.astype(np.float64).ravel()
         elif isinstance(msg, (list, tuple)):
             for i, v in enumerate(msg):
                 out.update(flatten(v, f"{prefix}[{i}]"))
         return out
+    cloud = all(hasattr(msg, a) for a in ("point_step", "row_step", "fields", "data"))
     for name in names:
         if name == "header" or name.startswith("__") or name.isupper():  # ROS constants
             continue
-        out.update(flatten(getattr(msg, name), f"{prefix}.{name}" if prefix else name))
+        path = f"{prefix}.{name}" if prefix else name
+        if cloud and name == "data":
+            out.update(_cloud_points(msg, prefix))
+        else:
+            out.update(flatten(getattr(msg, name), path))
     return out
+
+
+#: Fields a report shows per topic unless told otherwise (``--max-fields``).
+DEFAULT_MAX_FIELDS = 20
+#: The longest text value a report quotes, characters.
+_QUOTED = 40
+
+
+def _quoted(text: str) -> str:
+    return repr(text if len(text) <= _QUOTED else text[:_QUOTED - 3] + "...")
 
 
 @dataclass(frozen=True)
@@ -149,20 +193,42 @@ class FieldDifference:
 
     Attributes:
         field: field path, e.g. ``pose.pose.position.x``.
-        max_abs: largest |a - b| (inf when a string or the set of fields differs).
+        max_abs: largest |a - b| (inf when a text, an array's length or the set of fields
+            differs).
         stamp_ns: stamp of the message where it happened.
         tolerance: the tolerance that applies.
+        index: for an array field, the element where it happened; None otherwise.
+        texts: for a text field that differs, its (A, B) values there; None otherwise.
     """
 
     field: str
     max_abs: float
     stamp_ns: int
     tolerance: float
+    index: int | None = None
+    texts: tuple[str, str] | None = None
 
     @property
     def ok(self) -> bool:
         """Within tolerance."""
         return self.max_abs <= self.tolerance
+
+    @property
+    def excess(self) -> float:
+        """How far outside its tolerance: max_abs / tolerance (inf for a zero tolerance)."""
+        if self.max_abs == 0.0:
+            return 0.0
+        return self.max_abs / self.tolerance if self.tolerance > 0.0 else math.inf
+
+    def line(self) -> str:
+        """The report's line for this field."""
+        where = f"t = {self.stamp_ns / 1e9:.3f} s"
+        if self.texts is not None:
+            return (f"{self.field}: differs at {where}: A {_quoted(self.texts[0])}, "
+                    f"B {_quoted(self.texts[1])}")
+        name = self.field if self.index is None else f"{self.field}[{self.index}]"
+        return (f"{name}: max |a - b| = {self.max_abs:.6g} at {where} (tolerance "
+                f"{self.tolerance:g})" + ("" if self.ok else "  <-- outside"))
 
 
 @dataclass(frozen=True)
@@ -174,7 +240,7 @@ class TopicComparison:
         matched: messages aligned (same stamp in both bags).
         only_a: stamps present in A only.
         only_b: stamps present in B only.
-        fields: per-field differences, worst first.
+        fields: per-field differences, the farthest outside its tolerance first.
     """
 
     topic: str
@@ -200,20 +266,50 @@ class Comparison:
         """Every topic within tolerance."""
         return all(t.ok for t in self.topics)
 
-    def report(self, limit: int = 5) -> str:
-        """Human-readable lines: per topic, the worst fields and where they happened."""
+    def report(self, max_fields: int = DEFAULT_MAX_FIELDS) -> str:
+        """Per topic, every field that moved, the farthest outside its tolerance first.
+
+        Args:
+            max_fields: at most this many fields a topic (0: every one); a last line says
+                how many more moved.
+        """
         lines = []
         for t in self.topics:
             state = "ok" if t.ok else "DIFFERENT"
             lines.append(f"{t.topic}: {state}: {t.matched} messages matched"
                          + (f", {t.only_a} only in A" if t.only_a else "")
                          + (f", {t.only_b} only in B" if t.only_b else ""))
-            shown = [f for f in t.fields if not f.ok][:limit] or t.fields[:1]
-            for f in shown:
-                lines.append(f"  {f.field}: max |a - b| = {f.max_abs:.6g} at t = "
-                             f"{f.stamp_ns / 1e9:.3f} s (tolerance {f.tolerance:g})"
-                             + ("" if f.ok else "  <-- outside"))
+            moved = [f for f in t.fields if f.max_abs > 0.0]
+            if not moved:
+                lines.append(f"  all {len(t.fields)} fields equal")
+                continue
+            shown = moved if max_fields <= 0 else moved[:max_fields]
+            lines += [f"  {f.line()}" for f in shown]
+            if len(moved) > len(shown):
+                outside = sum(1 for f in moved[len(shown):] if not f.ok)
+                lines.append(f"  ... {len(moved) - len(shown)} more fields moved ({outside} "
+                             "outside their tolerance); --max-fields 0 shows every one")
         return "\n".join(lines)
+
+
+def _difference(va: object, vb: object) -> tuple[float, int | None]:
+    """(largest |a - b|, the array index where) of one field's values in two messages."""
+    if isinstance(va, np.ndarray) and isinstance(vb, np.ndarray):
+        if va.shape != vb.shape:
+            return math.inf, None
+        if va.size == 0:
+            return 0.0, None
+        nan_a, nan_b = np.isnan(va), np.isnan(vb)
+        diff = np.where(nan_a & nan_b, 0.0, np.abs(va - vb))
+        diff[nan_a != nan_b] = math.inf
+        i = int(np.argmax(diff))
+        return float(diff[i]), i
+    if isinstance(va, float) and isinstance(vb, float):
+        if va == vb or (math.isnan(va) and math.isnan(vb)):
+            return 0.0, None
+        diff = abs(va - vb)
+        return (math.inf if math.isnan(diff) else diff), None  # a NaN on one side only
+    return (0.0 if isinstance(va, str) and va == vb else math.inf), None
 
 
 def _tolerance(path: str, topic: str, tolerances: Mapping[str, float]) -> float:
@@ -252,7 +348,7 @@ def compare_bags(a: str | Path, b: str | Path, topics: Iterable[str] | None = No
             by_stamp_b.setdefault(stamp, msg)
         stamps_a = {stamp for stamp, _ in msgs_a}
         only_b = len(set(by_stamp_b) - stamps_a)
-        worst: dict[str, tuple[float, int]] = {}
+        worst: dict[str, FieldDifference] = {}
         matched = only_a = 0
         seen = set()
         for stamp, msg in msgs_a:
@@ -266,19 +362,14 @@ def compare_bags(a: str | Path, b: str | Path, topics: Iterable[str] | None = No
             matched += 1
             fa, fb = flatten(msg), flatten(other)
             for key in fa.keys() | fb.keys():
-                va, vb = fa.get(key), fb.get(key)
-                if isinstance(va, float) and isinstance(vb, float):
-                    both_nan = math.isnan(va) and math.isnan(vb)
-                    diff = 0.0 if va == vb or both_nan else abs(va - vb)
-                    if math.isnan(diff):  # a NaN on one side only
-                        diff = math.inf
-                else:
-                    diff = 0.0 if va == vb else math.inf
-                if key not in worst or diff > worst[key][0]:
-                    worst[key] = (diff, stamp)
-        fields = sorted(
-            (FieldDifference(k, d, s, _tolerance(k, topic, tolerances))
-             for k, (d, s) in worst.items()),
-            key=lambda f: (f.ok, -f.max_abs / max(f.tolerance, 1e-300), f.field))
+                diff, index = _difference(fa.get(key), fb.get(key))
+                if key not in worst or diff > worst[key].max_abs:
+                    texts = ((str(fa.get(key, "(absent)")), str(fb.get(key, "(absent)")))
+                             if diff > 0.0 and (isinstance(fa.get(key), str)
+                                                or isinstance(fb.get(key), str)) else None)
+                    worst[key] = FieldDifference(key, diff, stamp,
+                                                 _tolerance(key, topic, tolerances), index,
+                                                 texts)
+        fields = sorted(worst.values(), key=lambda f: (f.ok, -f.excess, -f.max_abs, f.field))
         results.append(TopicComparison(topic, matched, only_a, only_b, fields))
     return Comparison(results)

@@ -1,4 +1,11 @@
-"""`boatsim plot BAG`: trajectory, attitude, speed and wrench sources of a recorded run."""
+"""`boatsim plot BAG`: one figure per boat of a recorded run, each quantity on its own axis.
+
+Panels, all against simulation time but the first: the trajectory with heading marks; the
+commands (throttle, rudder, each named thruster) as the boat held them (the latest wins);
+the response (speed over ground, yaw rate); heading; heave; roll and pitch; and the wrench
+sources split by direction, surge force and yaw moment, so thrust and rudder are not
+flattened beside tens of kN of buoyancy (which acts in z). Headless (matplotlib's Agg).
+"""
 
 from __future__ import annotations
 
@@ -12,13 +19,165 @@ from boat_msgs_py import names
 
 __all__ = ["plot_bag"]
 
+#: Heading marks drawn along a trajectory.
+_HEADING_MARKS = 16
+#: A wrench source whose force and moment stay below these is listed as zero, not drawn.
+_ZERO_FORCE, _ZERO_MOMENT = 1e-6, 1e-6  # N, N m
 
 
-def plot_bag(bag: str | Path, out: str | Path | None = None) -> Path:
-    """Draw every boat of a bag into one PNG (headless); returns the file written.
+def _series(rows: list, value) -> tuple[np.ndarray, np.ndarray]:
+    """(t s, values) of a topic's (stamp ns, message) rows."""
+    return (np.array([s for s, _ in rows], dtype=float) / 1e9,
+            np.array([value(m) for _, m in rows], dtype=float))
 
-    Panels: trajectory in the plane; heave, roll and pitch; speed; the force of each
-    wrench source (body-frame magnitude). Boats are found by their ``odom`` topics.
+
+def _odometry(rows: list) -> dict[str, np.ndarray]:
+    """Time, position, roll/pitch/yaw (rad), speed over ground and yaw rate of odom rows."""
+    t, p = _series(rows, lambda m: (m.pose.pose.position.x, m.pose.pose.position.y,
+                                    m.pose.pose.position.z))
+    _, q = _series(rows, lambda m: (m.pose.pose.orientation.x, m.pose.pose.orientation.y,
+                                    m.pose.pose.orientation.z, m.pose.pose.orientation.w))
+    _, v = _series(rows, lambda m: (m.twist.twist.linear.x, m.twist.twist.linear.y,
+                                    m.twist.twist.angular.z))
+    euler = np.array([quat_to_euler(x) for x in q]).reshape(-1, 3)
+    return {"t": t, "p": p.reshape(-1, 3), "euler": euler,
+            "speed": np.hypot(v[:, 0], v[:, 1]) if len(v) else v, "yaw_rate": v[:, 2]
+            if len(v) else v}
+
+
+def _trajectory(ax, odom: dict) -> None:
+    p, yaw = odom["p"], odom["euler"][:, 2]
+    ax.plot(p[:, 0], p[:, 1], color="tab:blue", lw=1.2)
+    ax.plot(p[:1, 0], p[:1, 1], "o", color="tab:green", label="start")
+    ax.plot(p[-1:, 0], p[-1:, 1], "s", color="tab:red", label="end")
+    marks = np.unique(np.linspace(0, len(p) - 1, _HEADING_MARKS).astype(int))
+    span = max(np.ptp(p[:, 0]), np.ptp(p[:, 1]), 1.0)
+    ax.quiver(p[marks, 0], p[marks, 1], np.cos(yaw[marks]), np.sin(yaw[marks]),
+              angles="xy", scale_units="xy", scale=12.0 / span, width=0.004,
+              color="tab:blue", alpha=0.7, label="heading")
+    ax.set(title="trajectory (world, ENU)", xlabel="x east [m]", ylabel="y north [m]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.legend(fontsize=7, loc="best")
+
+
+def _steps(ax, rows: list, value, end: float, **style) -> bool:
+    """Draw a command topic as held until the next message (or ``end``); False if empty."""
+    if not rows:
+        return False
+    t, y = _series(rows, value)
+    ax.step(np.append(t, end), np.append(y, y[-1]), where="post", **style)
+    return True
+
+
+def _commands(ax, messages: dict, boat: str, end: float) -> None:
+    """Throttle (left axis, -1..1) and rudder / thruster angles (right axis, deg)."""
+    thrust = messages.get(names.boat_topic(boat, names.CMD_THRUST), [])
+    rudder = messages.get(names.boat_topic(boat, names.CMD_RUDDER), [])
+    prefix = names.boat_topic(boat, "thrusters") + "/"
+    thrusters = sorted(t for t in messages if t.startswith(prefix))
+    angle_ax = ax.twinx()
+    drawn = _steps(ax, thrust, lambda m: m.data, end, color="tab:blue",
+                   label=names.CMD_THRUST)
+    drawn |= _steps(angle_ax, rudder, lambda m: np.degrees(m.data), end, color="tab:orange",
+                    label=f"{names.CMD_RUDDER} [deg]")
+    for i, topic in enumerate(thrusters):
+        name = topic[len(prefix):]
+        is_angle = name.endswith("/" + names.THRUSTER_ANGLE)
+        drawn |= _steps(angle_ax if is_angle else ax, messages[topic],
+                        (lambda m: np.degrees(m.data)) if is_angle else (lambda m: m.data), end,
+                        ls="--", color=f"C{i + 2}", label=name + (" [deg]" if is_angle else ""))
+    ax.set(title="commands (as held: the latest wins)", xlabel="t [s]",
+           ylabel="throttle [-1 .. 1]", ylim=(-1.1, 1.1))
+    angle_ax.set_ylabel("angle [deg, + = bow to port]")
+    if not drawn:
+        ax.text(0.5, 0.5, "no command topics in the bag (none published, or scripted)",
+                ha="center", va="center", transform=ax.transAxes, fontsize=8)
+    handles = [h for a in (ax, angle_ax) for h in a.get_legend_handles_labels()[0]]
+    if handles:
+        ax.legend(handles=handles, fontsize=7, loc="lower left")
+
+
+def _response(ax, odom: dict) -> None:
+    """Speed over ground (left) and yaw rate (right)."""
+    ax.plot(odom["t"], odom["speed"], color="tab:blue", label="speed over ground")
+    ax.set(title="response: speed and yaw rate", xlabel="t [s]", ylabel="speed [m/s]")
+    rate_ax = ax.twinx()
+    rate_ax.plot(odom["t"], np.degrees(odom["yaw_rate"]), color="tab:purple",
+                 label="yaw rate")
+    rate_ax.set_ylabel("yaw rate [deg/s, + = to port]")
+    handles = ax.get_legend_handles_labels()[0] + rate_ax.get_legend_handles_labels()[0]
+    ax.legend(handles=handles, fontsize=7, loc="upper left")
+
+
+def _motions(axes, odom: dict) -> None:
+    """Heading, heave, and roll with pitch, each on its own axis with its unit."""
+    ax_heading, ax_heave, ax_att = axes
+    t = odom["t"]
+    ax_heading.plot(t, np.degrees(np.unwrap(odom["euler"][:, 2])), color="tab:blue")
+    ax_heading.set(title="heading (yaw, unwrapped)", xlabel="t [s]",
+                   ylabel="yaw [deg, 0 = east, + = CCW]")
+    ax_heave.plot(t, odom["p"][:, 2], color="tab:cyan")
+    ax_heave.set(title="heave (hull reference point)", xlabel="t [s]", ylabel="z [m]")
+    ax_att.plot(t, np.degrees(odom["euler"][:, 0]), color="tab:red", label="roll")
+    ax_att.plot(t, np.degrees(odom["euler"][:, 1]), color="tab:green", label="pitch")
+    ax_att.set(title="roll and pitch", xlabel="t [s]", ylabel="[deg]")
+    ax_att.legend(fontsize=7, loc="upper right")
+
+
+def _wrenches(axes, messages: dict, boat: str) -> None:
+    """Surge force and yaw moment of each wrench source (body frame); zero ones listed."""
+    ax_fx, ax_mz = axes
+    zero = []
+    for i, source in enumerate(names.WRENCH_SOURCES):
+        rows = messages.get(names.wrench_topic(boat, source))
+        if not rows:
+            continue
+        t, w = _series(rows, lambda m: (m.wrench.force.x, m.wrench.force.y, m.wrench.force.z,
+                                        m.wrench.torque.z))
+        if np.abs(w[:, :3]).max() < _ZERO_FORCE and np.abs(w[:, 3]).max() < _ZERO_MOMENT:
+            zero.append(source)
+            continue
+        style = {"color": f"C{i}", "lw": 1.6 if source in ("thrust", "rudder") else 1.0,
+                 "label": source}
+        ax_fx.plot(t, w[:, 0] / 1e3, **style)
+        ax_mz.plot(t, w[:, 3] / 1e3, **style)
+    ax_fx.set(title="surge force by source, body x", xlabel="t [s]", ylabel="[kN]")
+    ax_mz.set(title="yaw moment by source, body z", xlabel="t [s]",
+              ylabel="[kN m, + = to port]")
+    for ax in axes:
+        if zero:
+            ax.text(0.01, 0.02, f"zero all along: {', '.join(zero)}", transform=ax.transAxes,
+                    fontsize=7, color="0.4")
+        if ax.lines:
+            ax.legend(fontsize=7, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+        else:
+            ax.text(0.5, 0.5, "no wrench topics in the bag", ha="center", va="center",
+                    transform=ax.transAxes, fontsize=8)
+
+
+def _figure(messages: dict, boat: str, title: str, target: Path) -> None:
+    import matplotlib.pyplot as plt
+
+    odom = _odometry(messages[names.boat_topic(boat, names.ODOM)])
+    fig, axes = plt.subplots(4, 2, figsize=(12, 15), constrained_layout=True)
+    _trajectory(axes[0, 0], odom)
+    _commands(axes[0, 1], messages, boat, float(odom["t"][-1]) if len(odom["t"]) else 0.0)
+    _response(axes[1, 0], odom)
+    _motions((axes[1, 1], axes[2, 0], axes[2, 1]), odom)
+    _wrenches((axes[3, 0], axes[3, 1]), messages, boat)
+    for ax in axes.ravel():
+        ax.grid(True, alpha=0.3)
+    fig.suptitle(title)
+    fig.savefig(target, dpi=100)
+    plt.close(fig)
+
+
+def plot_bag(bag: str | Path, out: str | Path | None = None) -> list[Path]:
+    """Draw each boat of a bag into a PNG of its own (headless); returns the files written.
+
+    One boat: ``out`` (default: the bag's path with ``.png``). Several: ``out``'s name with
+    ``_<boat>`` before the suffix. Boats are found by their ``odom`` topics; the output's
+    folder is made if missing.
 
     Raises:
         BagError: unreadable bag or no odometry in it.
@@ -26,52 +185,18 @@ def plot_bag(bag: str | Path, out: str | Path | None = None) -> Path:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
     bag = Path(bag)
     messages = read_bag(bag)
-    odoms = sorted(t for t in messages if names.boat_of(t, names.ODOM) is not None)
-    if not odoms:
+    boats = sorted(b for t in messages if (b := names.boat_of(t, names.ODOM)) is not None)
+    if not boats:
         raise BagError(f"{bag}: no odom topic to plot (topics: {', '.join(sorted(messages))})")
-    fig, axes = plt.subplots(2, 2, figsize=(12, 9), constrained_layout=True)
-    (ax_xy, ax_att), (ax_speed, ax_force) = axes
-    for topic in odoms:
-        boat = names.boat_of(topic, names.ODOM)
-        label = boat or "boat"
-        rows = messages[topic]
-        t = np.array([s for s, _ in rows]) / 1e9
-        p = np.array([(m.pose.pose.position.x, m.pose.pose.position.y, m.pose.pose.position.z)
-                      for _, m in rows])
-        q = np.array([(m.pose.pose.orientation.x, m.pose.pose.orientation.y,
-                       m.pose.pose.orientation.z, m.pose.pose.orientation.w) for _, m in rows])
-        v = np.array([(m.twist.twist.linear.x, m.twist.twist.linear.y) for _, m in rows])
-        rp = np.degrees(np.array([quat_to_euler(x)[:2] for x in q]))
-        ax_xy.plot(p[:, 0], p[:, 1], label=label)
-        ax_xy.plot(p[:1, 0], p[:1, 1], "o", color=ax_xy.lines[-1].get_color())
-        ax_att.plot(t, p[:, 2], label=f"{label} heave z [m]")
-        ax_att.plot(t, rp[:, 0] / 10, "--", label=f"{label} roll [10 deg]")
-        ax_att.plot(t, rp[:, 1] / 10, ":", label=f"{label} pitch [10 deg]")
-        ax_speed.plot(t, np.hypot(v[:, 0], v[:, 1]), label=label)
-        for source in names.WRENCH_SOURCES:
-            wrench = messages.get(names.wrench_topic(boat, source))
-            if not wrench:
-                continue
-            tw = np.array([s for s, _ in wrench]) / 1e9
-            f = np.array([(m.wrench.force.x, m.wrench.force.y, m.wrench.force.z)
-                          for _, m in wrench])
-            ax_force.plot(tw, np.linalg.norm(f, axis=1) / 1e3, label=f"{label} {source}")
-    ax_xy.set(title="trajectory (world, ENU; o = start)", xlabel="x east [m]",
-              ylabel="y north [m]")
-    ax_xy.set_aspect("equal", adjustable="datalim")
-    ax_att.set(title="heave and attitude", xlabel="t [s]")
-    ax_speed.set(title="speed over ground", xlabel="t [s]", ylabel="[m/s]")
-    ax_force.set(title="wrench sources, |force| (body frame)", xlabel="t [s]", ylabel="[kN]")
-    for ax in axes.ravel():
-        ax.grid(True, alpha=0.3)
-        if ax.lines:
-            ax.legend(fontsize=7, loc="best")
-    fig.suptitle(f"boatsim: {bag.name}")
     target = Path(out) if out else bag.with_suffix(".png")
-    fig.savefig(target, dpi=100)
-    plt.close(fig)
-    return target
+    target.parent.mkdir(parents=True, exist_ok=True)
+    written = []
+    for boat in boats:
+        path = target if len(boats) == 1 else target.with_name(
+            f"{target.stem}_{boat or 'boat'}{target.suffix or '.png'}")
+        _figure(messages, boat, f"boatsim: {bag.name}, boat {boat or '(root namespace)'}", path)
+        written.append(path)
+    return written

@@ -52,16 +52,31 @@ def _apply_keys(data: str, throttle: float, rudder: float, max_rudder: float
     return throttle, rudder
 
 
-def _status(throttle: float, rudder: float, odom) -> str:
+def _status(throttle: float, rudder: float, odom, odom_topic: str = "/odom") -> str:
     """The status line: the commands, and the boat's speed and heading from its odometry."""
-    speed = heading = float("nan")
-    if odom is not None:
-        speed = math.hypot(odom.twist.twist.linear.x, odom.twist.twist.linear.y)
-        o = odom.pose.pose.orientation
-        heading = math.degrees(math.atan2(2 * (o.w * o.z + o.x * o.y),
-                                          1 - 2 * (o.y * o.y + o.z * o.z)))
-    return (f"\rthrottle {throttle:+.2f}  rudder {rudder:+.3f} rad  "
-            f"speed {speed:5.2f} m/s  heading {heading:6.1f} deg   ")
+    commands = f"\rthrottle {throttle:+.2f}  rudder {rudder:+.3f} rad  "
+    if odom is None:
+        return commands + f"(no {odom_topic} yet)   "
+    speed = math.hypot(odom.twist.twist.linear.x, odom.twist.twist.linear.y)
+    o = odom.pose.pose.orientation
+    heading = math.degrees(math.atan2(2 * (o.w * o.z + o.x * o.y),
+                                      1 - 2 * (o.y * o.y + o.z * o.z)))
+    return commands + f"speed {speed:5.2f} m/s  heading {heading:6.1f} deg   "
+
+
+#: Wall time without odometry after which teleop says which boats there are, s.
+_ODOM_PATIENCE = 3.0
+
+
+def _no_odometry(odom_topic: str, topics: list[str]) -> str:
+    """The warning for a boat whose odometry does not come, naming the boats that publish."""
+    from boat_msgs_py import names
+
+    boats = sorted(b for t in topics if (b := names.boat_of(t, names.ODOM)) is not None)
+    found = (", ".join(f"--ns {b}" if b else "(no --ns: the root boat)" for b in boats)
+             if boats else "none: is `boatsim run` up, on this ROS_DOMAIN_ID?")
+    return (f"\r\nboatsim teleop: warning: no {odom_topic} after {_ODOM_PATIENCE:g} s; the "
+            f"commands go to a boat nobody simulates. Boats with odometry: {found}\r\n")
 
 
 def teleop(namespace: str = "", max_rudder: float = math.radians(35.0)) -> int:
@@ -87,6 +102,8 @@ def teleop(namespace: str = "", max_rudder: float = math.radians(35.0)) -> int:
     node.create_subscription(Odometry, names.boat_topic(namespace, names.ODOM),
                              lambda m: odom.__setitem__(slice(None), [m]), STATE_QOS)
     throttle = rudder = 0.0
+    odom_topic = names.boat_topic(namespace, names.ODOM)
+    warn_at = time.monotonic() + _ODOM_PATIENCE  # once, if no odometry by then
     saved = termios.tcgetattr(fd)
     out = sys.stdout
     try:
@@ -105,7 +122,11 @@ def teleop(namespace: str = "", max_rudder: float = math.radians(35.0)) -> int:
                 thrust_pub.publish(Float64(data=throttle))
                 rudder_pub.publish(Float64(data=rudder))
                 next_send = time.monotonic() + 0.1
-                out.write(_status(throttle, rudder, odom[0] if odom else None))
+                out.write(_status(throttle, rudder, odom[0] if odom else None, odom_topic))
+                if not odom and time.monotonic() > warn_at:
+                    warn_at = math.inf
+                    out.write(_no_odometry(odom_topic, [
+                        t for t, _ in node.get_topic_names_and_types()]))
                 out.flush()
             rclpy.spin_once(node, timeout_sec=0.0)
     except KeyboardInterrupt:

@@ -279,3 +279,28 @@ def test_alike_boats_share_their_parameters_and_keep_their_own_poses():
                                       getattr(ready_alone.boats[0].params, field))
     assert ready.boats[1].params.control.height_offset == (
         ready_alone.boats[0].params.control.height_offset)
+
+
+def test_a_shipped_scenarios_comment_on_its_steepness_is_what_the_ocean_logs():
+    import re
+
+    root = Path(__file__).resolve().parents[3] / "scenarios"
+    checked = 0
+    for path in sorted(root.glob("*.yaml")):
+        said = re.search(r"sum Q k a = ([0-9.]+)", path.read_text())
+        if said:
+            assert load_scenario(path).sea.steepness_sum == pytest.approx(
+                float(said.group(1)), abs=5e-4), path.name
+            checked += 1
+    assert checked >= 1  # default.yaml says it
+
+
+def test_a_file_without_boats_gets_a_default_boat_and_a_note_saying_so(tmp_path):
+    assert parse_scenario({}).notes == (
+        "the file is empty: one default boat (a 4 m x 2 m x 1 m box, 4,100 kg) in the root "
+        "namespace",)
+    assert parse_scenario({"simulation": {"seed": 1}}).notes[0].startswith("no `boats`: ")
+    assert parse_scenario({"boats": [{}]}).notes == ()
+    empty = tmp_path / "empty.yaml"
+    empty.write_text("")
+    assert load_scenario(empty).notes[0].startswith("the file is empty")

@@ -136,7 +136,8 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     sea = ocean_block(d.get("ocean"), sim)
     environment = environment_block(d.get("environment"), sim.seed)
     boats_raw = d.get("boats")
-    if boats_raw is None:
+    defaulted = boats_raw is None
+    if defaulted:
         boats_raw = [{}]
     if not isinstance(boats_raw, list) or not boats_raw:
         raise ScenarioError("boats", boats_raw, "must be a non-empty list of boats")
@@ -150,5 +151,11 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     for i, n in enumerate(names):
         if names.index(n) != i:
             raise ScenarioError(f"boats[{i}].name", n, "must be unique among the boats")
+    notes = ()
+    if defaulted:
+        hull, mass = boats[0].params.hull, boats[0].params.mass
+        notes = (("the file is empty" if not d else "no `boats`") + ": one default boat (a "
+                 f"{hull.length:g} m x {hull.beam:g} m x {hull.height:g} m box, {mass:,.0f} kg) "
+                 "in the root namespace",)
     return Scenario(simulation=sim, sea=sea, boats=boats, source=source,
-                    environment=environment)
+                    environment=environment, notes=notes)

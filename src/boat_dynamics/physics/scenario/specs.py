@@ -124,10 +124,15 @@ class BoatSpec:
 
 @dataclass(frozen=True)
 class Scenario:
-    """A whole run: settings, the sea, the boats, and the current and wind."""
+    """A whole run: settings, the sea, the boats, and the current and wind.
+
+    ``notes``: what the reader assumed that the file did not say (a default boat for a file
+    with no ``boats``), for the user to be told.
+    """
 
     simulation: SimulationSettings
     sea: WaveField
     boats: tuple[BoatSpec, ...]
     source: str = "<scenario>"
     environment: Environment = field(default_factory=Environment)
+    notes: tuple[str, ...] = ()
