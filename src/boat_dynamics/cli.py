@@ -376,8 +376,12 @@ def _introspect(args: argparse.Namespace) -> int:
                          if args.action == "list" else
                          ros.topic_info(s, args.topic_name, args.verbose))
             elif args.action == "echo":
-                ros.topic_echo(s, args.topic_name, out, args.once, args.full_length,
-                               timeout=args.timeout)
+                printed = ros.topic_echo(s, args.topic_name, out, args.once, args.full_length,
+                                         timeout=args.timeout)
+                if args.once and not printed:
+                    print(f"boatsim {verb}: error: no message on {args.topic_name} within "
+                          f"{args.timeout:g} s", file=sys.stderr)
+                    return 1
                 return 0
             elif args.action == "hz":
                 ros.topic_hz(s, args.topic_name, out, args.window, timeout=args.timeout)

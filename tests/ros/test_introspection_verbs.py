@@ -58,9 +58,10 @@ def test_topic_list_info_echo_and_hz(sim, cli):
     assert echo.returncode == 0, echo.stderr
     doc = yaml.safe_load(echo.stdout.split("---")[0])
     assert doc["child_frame_id"] == "alpha/base_link" and len(doc["pose"]["covariance"]) == 36
-    latched = yaml.safe_load(cli("topic", "echo", "/ocean/wave_field", "--once", "--timeout",
-                                 "30").stdout
-                             .split("---")[0])  # transient-local: a late subscriber gets it
+    # transient-local: a late subscriber gets it (if it waits for the publisher's endpoint)
+    latched_echo = cli("topic", "echo", "/ocean/wave_field", "--once", "--timeout", "30")
+    assert latched_echo.returncode == 0, latched_echo.stderr
+    latched = yaml.safe_load(latched_echo.stdout.split("---")[0])
     assert len(latched["components"]) == 16
     hz = cli("topic", "hz", "/alpha/odom", "--timeout", "3").stdout
     assert "average rate: " in hz and "window: " in hz

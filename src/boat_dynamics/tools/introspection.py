@@ -169,11 +169,21 @@ def _type_of(s: Session, topic: str, wait: float) -> str:
     return found[0]
 
 
-def _matching_qos(s: Session, topic: str):
-    """A QoS every publisher of ``topic`` can serve (``boat_msgs_py.qos.serving``)."""
+def _matching_qos(s: Session, topic: str, wait: float):
+    """A QoS every publisher of ``topic`` can serve (``boat_msgs_py.qos.serving``).
+
+    A topic may be on the graph by its subscriptions before its publisher is (discovery
+    brings a participant's endpoints one by one): this waits up to ``wait`` s for a
+    publisher, else a latched topic would get a volatile subscription and its message would
+    never come (seen in CI: `echo /ocean/wave_field --once` printed nothing in 30 s).
+    """
     from boat_msgs_py.qos import serving
 
-    return serving([i.qos_profile for i in s.node.get_publishers_info_by_topic(topic)])
+    def offered():
+        return [i.qos_profile for i in s.node.get_publishers_info_by_topic(topic)]
+
+    s.spin_until(lambda: bool(offered()), wait)
+    return serving(offered())
 
 
 def topic_echo(s: Session, topic: str, out: TextIO, once: bool = False, full_length: bool = False,
@@ -201,7 +211,7 @@ def topic_echo(s: Session, topic: str, out: TextIO, once: bool = False, full_len
         out.flush()
         printed[0] += 1
 
-    s.node.create_subscription(cls, topic, show, _matching_qos(s, topic))
+    s.node.create_subscription(cls, topic, show, _matching_qos(s, topic, wait))
     s.spin_until(lambda: once and printed[0] > 0, timeout)
     return printed[0]
 
@@ -250,7 +260,7 @@ def topic_hz(s: Session, topic: str, out: TextIO, window: int = 10000, wait: flo
         rate.arrived(clock())
         count[0] += 1
 
-    s.node.create_subscription(cls, topic, arrived, _matching_qos(s, topic))
+    s.node.create_subscription(cls, topic, arrived, _matching_qos(s, topic, wait))
     end = math.inf if timeout is None else time.monotonic() + timeout
     next_print = time.monotonic() + 1.0
     while time.monotonic() < end:

@@ -11,3 +11,52 @@ def test_the_rate_and_its_spread_over_the_window():
     # intervals kept: 0.02, 0.02, 0.04, 0.02 -> mean 0.025 s, 40 Hz
     assert rate.report() == ("average rate: 40.000\n\tmin: 0.020s max: 0.040s "
                              "std dev: 0.00866s window: 5")
+
+
+class _Info:
+    def __init__(self, qos) -> None:
+        self.qos_profile = qos
+
+
+class _Graph:
+    """A node whose topic's publisher is discovered only at the third look."""
+
+    def __init__(self, qos) -> None:
+        self.looks, self._qos = 0, qos
+
+    def get_publishers_info_by_topic(self, topic):
+        self.looks += 1
+        return [_Info(self._qos)] if self.looks >= 3 else []
+
+
+class _NoWaitExecutor:
+    def spin_once(self, timeout_sec):
+        pass
+
+
+def test_a_latched_topic_seen_first_by_its_subscriptions_gets_a_latched_subscription():
+    """CI: `echo /ocean/wave_field --once` chose QoS before the ocean's publisher was known."""
+    from rclpy.qos import DurabilityPolicy, ReliabilityPolicy
+
+    from boat_dynamics.tools.introspection import Session, _matching_qos
+    from boat_msgs_py.qos import WAVE_FIELD_QOS
+
+    graph = _Graph(WAVE_FIELD_QOS)
+    qos = _matching_qos(Session(graph, _NoWaitExecutor()), "/ocean/wave_field", wait=5.0)
+    assert graph.looks >= 3
+    assert qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
+    assert qos.reliability == ReliabilityPolicy.RELIABLE
+
+
+def test_a_topic_without_publishers_is_waited_for_then_subscribed_best_effort():
+    from rclpy.qos import DurabilityPolicy, ReliabilityPolicy
+
+    from boat_dynamics.tools.introspection import Session, _matching_qos
+
+    class Empty:
+        def get_publishers_info_by_topic(self, topic):
+            return []
+
+    qos = _matching_qos(Session(Empty(), _NoWaitExecutor()), "/nobody", wait=0.05)
+    assert qos.durability == DurabilityPolicy.VOLATILE
+    assert qos.reliability == ReliabilityPolicy.BEST_EFFORT
