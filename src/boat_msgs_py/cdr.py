@@ -34,6 +34,7 @@ __all__ = [
     "CdrTemplate",
     "TemplateError",
     "clock_template",
+    "diagnostic_array_cdr",
     "odometry_template",
     "pose_template",
     "stamp_parts",
@@ -236,3 +237,57 @@ def tf_template(parent: str, child: str, like: CdrTemplate | None = None) -> Cdr
         *_doubles(f"{prefix}.transform.rotation", "xyzw")), s,
         factory=lambda: TFMessage(transforms=[TransformStamped()])),
         {f"{prefix}.header.frame_id": parent, f"{prefix}.child_frame_id": child})
+
+
+_PAD = (b"", b"\x00", b"\x00\x00", b"\x00\x00\x00")
+_U32 = struct.Struct("<I").pack
+
+
+def _cdr_string(parts: list[bytes], at: int, text: str) -> int:
+    """Append a CDR string at offset ``at`` (after the encapsulation) to ``parts``.
+
+    Its uint32 length (with the NUL) is aligned to 4 with zero bytes; returns the offset
+    after its NUL.
+    """
+    data = text.encode()
+    pad = -at % 4
+    parts.append(_PAD[pad] + _U32(len(data) + 1) + data + b"\x00")
+    return at + pad + len(data) + 5
+
+
+def _cdr_count(parts: list[bytes], at: int, n: int) -> int:
+    """Append a sequence's uint32 length at offset ``at``, aligned; returns the next offset."""
+    pad = -at % 4
+    parts.append(_PAD[pad] + _U32(n))
+    return at + pad + 4
+
+
+def diagnostic_array_cdr(sec: int, nanosec: int,
+                         statuses: Sequence[tuple[str, int, str, Sequence[tuple[str, str]]]]
+                         ) -> bytes:
+    """diagnostic_msgs/DiagnosticArray serialized directly: little-endian CDR, padding zero.
+
+    The same bytes as :func:`boat_msgs_py.convert.diagnostic_array` serialized by rclpy and
+    zeroed (tested), and cheaper: a fleet's array holds ten strings a boat, 1.6 ms for 100
+    boats as rclpy objects serialized by rclpy (measured; zeroing its padding would add
+    more).
+
+    Args:
+        sec: header.stamp.sec.
+        nanosec: header.stamp.nanosec.
+        statuses: (name, level 0-255, message, ((key, value), ...)) per status; the
+            status's hardware_id is its name.
+    """
+    parts = [b"\x00\x01\x00\x00" + struct.pack("<iI", sec, nanosec)]  # CDR_LE, stamp
+    at = _cdr_string(parts, 8, "")  # header.frame_id
+    at = _cdr_count(parts, at, len(statuses))
+    for name, level, message, values in statuses:
+        parts.append(bytes((level,)))  # a byte: no alignment
+        at = _cdr_string(parts, at + 1, name)
+        at = _cdr_string(parts, at, message)
+        at = _cdr_string(parts, at, name)  # hardware_id
+        at = _cdr_count(parts, at, len(values))
+        for key, value in values:
+            at = _cdr_string(parts, at, key)
+            at = _cdr_string(parts, at, value)
+    return b"".join(parts)

@@ -124,3 +124,24 @@ def test_pack_writes_only_the_named_fields():
     assert at > 0 and len(zero) == len(one) == t.size
     assert zero[at:at + 8] == bytes(8)
     assert zero[:at] == one[:at] and zero[at + 8:] == one[at + 8:]
+
+
+texts = st.text(alphabet=st.characters(codec="utf-8", exclude_characters="\x00"), max_size=9)
+
+
+@settings(max_examples=80, deadline=None)
+@given(seconds, st.lists(st.tuples(texts, st.integers(0, 3), texts,
+                                   st.lists(st.tuples(texts, texts), max_size=4)),
+                         max_size=5))
+def test_diagnostic_array_bytes_equal_rclpys_with_zeroed_padding(t, statuses):
+    from diagnostic_msgs.msg import DiagnosticArray
+
+    from boat_msgs_py.cdr import diagnostic_array_cdr
+    from boat_msgs_py.convert import diagnostic_array
+    from boat_msgs_py.typestore import zero_padding
+
+    sec, nanosec = stamp_parts(t)
+    msg = diagnostic_array(seconds_to_time(t), statuses)
+    data = diagnostic_array_cdr(sec, nanosec, statuses)
+    assert data == zero_padding(serialize_message(msg), "diagnostic_msgs/msg/DiagnosticArray")
+    assert deserialize_message(data, DiagnosticArray) == msg

@@ -3,6 +3,7 @@
 import math
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -182,6 +183,39 @@ def test_diagnostics_and_control_mode_switch_at_run_time(boatsim, probe):
     assert values["control_mode"] == "kinematic"
     assert sim.stop() == 0
     assert "control_mode: now kinematic" in sim.output()
+
+
+def test_surface_cloud_is_sampled_only_while_someone_subscribes_or_records():
+    import rclpy
+
+    from boat_msgs_py.qos import SURFACE_QOS
+    from ocean_sim.physics.waves import WaveComponent
+    from ocean_sim.physics.waves import WaveField as Sea
+    from ocean_sim.ros.node import OceanNode
+
+    sea = Sea((WaveComponent(0.3, 20.0, 0.3, 0.6, 0.0),))
+    rclpy.init()
+    try:
+        node = OceanNode(sea, now=lambda: 0.0)
+        sampled = []
+        node.surface_cloud = lambda t: sampled.append(t) or PointCloud2()
+        try:
+            node.advance(0.0)  # nobody on /ocean/surface: nothing sampled
+            assert sampled == []
+            listener = rclpy.create_node("cloud_listener")
+            listener.create_subscription(PointCloud2, names.SURFACE_CLOUD, lambda m: None,
+                                         SURFACE_QOS)
+            t, deadline = 1.0, time.monotonic() + 20.0
+            while not sampled and time.monotonic() < deadline:  # matched within the DDS
+                node.advance(t)  # discovery, then asked at the next 1 s check
+                t += 1.0
+                time.sleep(0.2)
+            assert sampled, "a subscriber did not make the cloud published"
+            listener.destroy_node()
+        finally:
+            node.destroy_node()
+    finally:
+        rclpy.try_shutdown()
 
 
 def test_surface_cloud_of_overlapping_boats_is_one_grid_without_duplicates():

@@ -43,6 +43,7 @@ from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
     clock_template,
+    diagnostic_array_cdr,
     odometry_template,
     pose_template,
     stamp_parts,
@@ -50,7 +51,6 @@ from boat_msgs_py.cdr import (
     wrench_template,
 )
 from boat_msgs_py.convert import (
-    diagnostic_array,
     environment_from_msg,
     seconds_to_time,
     wave_field_from_msg,
@@ -627,8 +627,7 @@ class DynamicsNode(Node):
                                       self._system.center_of_mass, self._before, self._state)
         if self._due(k, self._rate, self._diag_rate):
             self._publish_wrenches(sec, nanosec)
-            self._publish_diagnostics(seconds_to_time(self._sim_clock.epoch
-                                                      + self._sim_clock.t))
+            self._publish_diagnostics(sec, nanosec)
 
     def _publish_states(self, sec: int, nanosec: int) -> None:
         """odom, pose and twist of every boat: the hull reference point's pose and twist."""
@@ -668,7 +667,7 @@ class DynamicsNode(Node):
                     boat.pubs[source].publish(template.pack(sec, nanosec,
                                                             *rows[source][boat.index]))
 
-    def _publish_diagnostics(self, stamp) -> None:
+    def _publish_diagnostics(self, sec: int, nanosec: int) -> None:
         """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""
         if self._remedies is None:
             self._remedies = ["; ".join(active_remedies(b.spec.params, self._substeps))
@@ -676,7 +675,7 @@ class DynamicsNode(Node):
         reports = fleet_reports(self._system, self._state, self._current_contact(),
                                 self._substeps,
                                 remedies=self._remedies)
-        self._diag_pub.publish(diagnostic_array(stamp, [
+        self._diag_pub.publish(diagnostic_array_cdr(sec, nanosec, [
             (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message,
              (*r.values, ("commands_received", str(boat.received)),
               ("commands_ignored_not_finite", str(boat.ignored)),
