@@ -145,3 +145,33 @@ def test_diagnostic_array_bytes_equal_rclpys_with_zeroed_padding(t, statuses):
     data = diagnostic_array_cdr(sec, nanosec, statuses)
     assert data == zero_padding(serialize_message(msg), "diagnostic_msgs/msg/DiagnosticArray")
     assert deserialize_message(data, DiagnosticArray) == msg
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(names_, min_size=1, max_size=6), seconds, st.data())
+def test_a_fleet_template_packs_each_boat_as_its_own_template(boats, t, data):
+    """Boats of several name lengths (several layouts) in one pass: the same bytes, bit for bit."""
+    import numpy as np
+
+    from boat_msgs_py.cdr import FleetTemplate
+
+    sec, nanosec = stamp_parts(t)
+    values = np.array(data.draw(st.lists(st.lists(finite, min_size=13, max_size=13),
+                                         min_size=len(boats), max_size=len(boats))))
+    for make, n in ((lambda b: odometry_template("world", f"{b}/base_link"), 13),
+                    (lambda b: pose_template(f"{b}"), 7), (lambda b: twist_template(b), 6),
+                    (lambda b: wrench_template(b), 6), (lambda b: tf_template("world", b), 7)):
+        templates = [make(b) for b in boats]
+        packed = FleetTemplate(templates).pack(sec, nanosec, values[:, :n])
+        assert packed == [tp.pack(sec, nanosec, *row) for tp, row in
+                          zip(templates, values[:, :n].tolist(), strict=True)]
+
+
+def test_a_fleet_template_takes_only_a_stamp_then_doubles():
+    from nav_msgs.msg import Odometry
+
+    from boat_msgs_py.cdr import FleetTemplate
+
+    unstamped = CdrTemplate(Odometry, [("pose.pose.position.x", "float64")])
+    with pytest.raises(TemplateError, match="stamp then float64"):
+        FleetTemplate([odometry_template("world", "a"), unstamped])

@@ -42,6 +42,7 @@ from boat_dynamics.physics.wrench import cross
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
+    FleetTemplate,
     clock_template,
     diagnostic_array_cdr,
     odometry_template,
@@ -244,6 +245,9 @@ class DynamicsNode(Node):
                                        f"{len(scenario.boats)}")
             self.boats.append(self._make_boat(spec, i))
         self._log_boats(scenario.boats)
+        # every boat's message of a kind packed in one pass (cdr.FleetTemplate)
+        self._fleet_templates = {key: FleetTemplate([b.templates[key] for b in self.boats])
+                                 for key in ("odom", "pose", "twist", "wrench")}
         self._transforms = TransformPublisher(self, list(scenario.boats), tap)
         self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
@@ -632,23 +636,39 @@ class DynamicsNode(Node):
     def _publish_states(self, sec: int, nanosec: int) -> None:
         """odom, pose and twist of every boat: the hull reference point's pose and twist."""
         state = self._state
-        pos = self._reference_points().tolist()
-        quat = state.orientation.tolist()
-        # velocity of the reference point: v_com + w x (r_ref - r_com), body frame
-        v_ref = (state.velocity - cross(state.angular_velocity, self._system.center_of_mass)
-                 ).tolist()
-        omega = state.angular_velocity.tolist()
+        # (B, 13): reference point, orientation, its velocity v_com + w x (r_ref - r_com) in
+        # the body frame, angular velocity
+        values = np.concatenate([
+            self._reference_points(), state.orientation,
+            state.velocity - cross(state.angular_velocity, self._system.center_of_mass),
+            state.angular_velocity], axis=1)
+        fleet = self._fleet_templates
+        for boat, data in zip(self.boats, fleet["odom"].pack(sec, nanosec, values),
+                              strict=True):
+            boat.pubs["odom"].publish(data)  # always
         now = time.monotonic()
-        for boat in self.boats:  # odom always; pose and twist when wanted (subscribed, recorded)
-            i, t, pubs = boat.index, boat.templates, boat.pubs
-            pubs["odom"].publish(t["odom"].pack(sec, nanosec, *pos[i], *quat[i], *v_ref[i],
-                                                *omega[i]))
-            if pubs["pose"].wanted(now):
-                pubs["pose"].publish(t["pose"].pack(sec, nanosec, *pos[i], *quat[i]))
-            if pubs["twist"].wanted(now):
-                pubs["twist"].publish(t["twist"].pack(sec, nanosec, *v_ref[i], *omega[i]))
+        for key, columns in (("pose", values[:, :7]), ("twist", values[:, 7:])):
+            self._publish_wanted(key, key, sec, nanosec, columns, now)
         if self._publish_tf:
-            self._transforms.publish(sec, nanosec, pos, quat, now)
+            self._transforms.publish(sec, nanosec, values[:, :7], now)
+
+    def _publish_wanted(self, topic_key: str, template_key: str, sec: int, nanosec: int,
+                        values: np.ndarray, now: float) -> None:
+        """A topic of every boat that wants it (subscribed or recorded), packed in one pass.
+
+        Args:
+            topic_key: the boats' publisher (``pose``, a wrench source).
+            template_key: their fleet template (``pose``, ``wrench``).
+            sec: stamp, s part.
+            nanosec: stamp, ns part.
+            values: (B, F) float64 fields of every boat.
+            now: s, time.monotonic().
+        """
+        wanted = [b for b in self.boats if b.pubs[topic_key].wanted(now)]
+        if wanted:
+            packed = self._fleet_templates[template_key].pack(sec, nanosec, values)
+            for boat in wanted:
+                boat.pubs[topic_key].publish(packed[boat.index])
 
     def _publish_wrenches(self, sec: int, nanosec: int) -> None:
         """wrench/<source> of every boat: the forces that acted during the last step."""
@@ -656,16 +676,11 @@ class DynamicsNode(Node):
         if forces is None:  # before the first step: the forces at the initial state
             forces, _ = pipeline.forces(self._system, self._state, self._fleet_inputs(),
                                         self._current_contact(), self.environment)
-        rows = {source: np.concatenate([getattr(forces, source).force,
-                                        getattr(forces, source).torque], axis=1).tolist()
-                for source in names.WRENCH_SOURCES}
         now = time.monotonic()
-        for boat in self.boats:
-            template = boat.templates["wrench"]
-            for source in names.WRENCH_SOURCES:
-                if boat.pubs[source].wanted(now):  # subscribed or recorded
-                    boat.pubs[source].publish(template.pack(sec, nanosec,
-                                                            *rows[source][boat.index]))
+        for source in names.WRENCH_SOURCES:
+            wrench = getattr(forces, source)
+            self._publish_wanted(source, "wrench", sec, nanosec,
+                                 np.concatenate([wrench.force, wrench.torque], axis=1), now)
 
     def _publish_diagnostics(self, sec: int, nanosec: int) -> None:
         """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""

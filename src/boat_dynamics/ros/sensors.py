@@ -34,7 +34,7 @@ from boat_dynamics.physics.sensors import (
 )
 from boat_dynamics.physics.system import FleetState
 from boat_msgs_py import names
-from boat_msgs_py.cdr import tf_template
+from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, noisy_odometry, tf_message
 from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
@@ -69,6 +69,7 @@ class TransformPublisher:
         for b in boats:  # each the last one relabelled (CdrTemplate.relabel)
             self._templates.append(tf_template(names.WORLD_FRAME, names.child_frame(b.name),
                                                self._templates[-1] if self._templates else None))
+        self._fleet = FleetTemplate(self._templates)  # every boat's message in one pass
         self._static = [(names.child_frame(b.name), names.sensor_frame(b.name, s.name),
                          s.position, _IDENTITY) for b in boats for s in b.sensors
                         if not isinstance(s, OdometrySpec)]
@@ -80,16 +81,21 @@ class TransformPublisher:
         if self._static_pub is not None:
             self._static_pub.publish(tf_message(stamp, self._static))
 
-    def publish(self, sec: int, nanosec: int, positions: list, orientations: list,
-                now: float) -> None:
-        """``/tf``, one message per boat: K (3,) m reference points, K (4,) orientations.
+    def publish(self, sec: int, nanosec: int, poses: np.ndarray, now: float) -> None:
+        """``/tf``, one message per boat.
 
-        Only while someone subscribes or the run records (``now``: s, time.monotonic()).
+        Only while someone subscribes or the run records.
+
+        Args:
+            sec: stamp, s part.
+            nanosec: stamp, ns part.
+            poses: (K, 7) each boat's reference point (m, world) and orientation (x, y, z, w).
+            now: s, time.monotonic().
         """
         if not self._pub.wanted(now):
             return
-        for template, p, q in zip(self._templates, positions, orientations, strict=True):
-            self._pub.publish(template.pack(sec, nanosec, *p, *q))
+        for data in self._fleet.pack(sec, nanosec, poses):
+            self._pub.publish(data)
 
 
 class SensorPublisher:
