@@ -12,6 +12,7 @@ __all__ = [
     "COMMAND_NAMES",
     "DIAGNOSTICS",
     "ENVIRONMENT",
+    "FLEET_STATE",
     "LOCKSTEP",
     "ODOM",
     "PARAMETER_EVENTS",
@@ -73,6 +74,8 @@ STEP_GRANT = "/boatsim/step_grant"
 #: std_msgs/UInt64MultiArray [K, N, steps, commands]: dynamics process K of N has taken
 #: ``steps`` steps and received ``commands`` command messages (its report to the barrier).
 STEP_DONE = "/boatsim/step_done"
+#: boat_msgs/FleetState: every boat's pose and twist in one message (simulation.fleet_state).
+FLEET_STATE = "/boatsim/fleet_state"
 #: diagnostic_msgs/DiagnosticArray, one status per boat.
 DIAGNOSTICS = "/diagnostics"
 

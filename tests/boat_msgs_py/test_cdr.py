@@ -175,3 +175,28 @@ def test_a_fleet_template_takes_only_a_stamp_then_doubles():
     unstamped = CdrTemplate(Odometry, [("pose.pose.position.x", "float64")])
     with pytest.raises(TemplateError, match="stamp then float64"):
         FleetTemplate([odometry_template("world", "a"), unstamped])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(names_, max_size=5), frames, seconds, st.data())
+def test_fleet_state_bytes_equal_rclpys_with_zeroed_padding(boats, frame, t, data):
+    import numpy as np
+    from boat_msgs.msg import FleetState
+    from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+
+    from boat_msgs_py.cdr import FleetStateTemplate
+    from boat_msgs_py.typestore import zero_padding
+
+    sec, nanosec = stamp_parts(t)
+    v = np.array(data.draw(st.lists(st.lists(finite, min_size=13, max_size=13),
+                                    min_size=len(boats), max_size=len(boats)))).reshape(-1, 13)
+    msg = FleetState(names=boats, poses=[Pose(position=Point(x=r[0], y=r[1], z=r[2]),
+                                              orientation=Quaternion(x=r[3], y=r[4], z=r[5],
+                                                                     w=r[6])) for r in v],
+                     twists=[Twist(linear=Vector3(x=r[7], y=r[8], z=r[9]),
+                                   angular=Vector3(x=r[10], y=r[11], z=r[12])) for r in v])
+    msg.header.stamp = seconds_to_time(t)
+    msg.header.frame_id = frame
+    packed = FleetStateTemplate(frame, boats).pack(sec, nanosec, v[:, :7], v[:, 7:])
+    assert packed == zero_padding(serialize_message(msg), "boat_msgs/msg/FleetState")
+    assert deserialize_message(packed, FleetState) == msg

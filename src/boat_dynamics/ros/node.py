@@ -15,6 +15,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from boat_msgs.msg import Environment as EnvironmentMsg
+from boat_msgs.msg import FleetState as FleetStateMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
@@ -42,6 +43,7 @@ from boat_dynamics.physics.wrench import cross
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
+    FleetStateTemplate,
     FleetTemplate,
     clock_template,
     diagnostic_array_cdr,
@@ -248,6 +250,12 @@ class DynamicsNode(Node):
         # every boat's message of a kind packed in one pass (cdr.FleetTemplate)
         self._fleet_templates = {key: FleetTemplate([b.templates[key] for b in self.boats])
                                  for key in ("odom", "pose", "twist", "wrench")}
+        self._fleet_pub, self._fleet_state = None, None  # every boat in one message
+        if sim.fleet_state:
+            self._fleet_pub = TappedPublisher(self, FleetStateMsg, names.FLEET_STATE,
+                                              STATE_QOS, tap)
+            self._fleet_state = FleetStateTemplate(names.WORLD_FRAME,
+                                                   [b.spec.name for b in self.boats])
         self._transforms = TransformPublisher(self, list(scenario.boats), tap)
         self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
@@ -646,6 +654,9 @@ class DynamicsNode(Node):
         for boat, data in zip(self.boats, fleet["odom"].pack(sec, nanosec, values),
                               strict=True):
             boat.pubs["odom"].publish(data)  # always
+        if self._fleet_pub is not None:
+            self._fleet_pub.publish(self._fleet_state.pack(sec, nanosec, values[:, :7],
+                                                           values[:, 7:]))
         now = time.monotonic()
         for key, columns in (("pose", values[:, :7]), ("twist", values[:, 7:])):
             self._publish_wanted(key, key, sec, nanosec, columns, now)

@@ -29,7 +29,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
     d = mapping(raw, key)
     only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
                    "seed", "gravity", "water_density", "cmd_timeout", "substeps",
-                   "wave_precision", "datum", "publish_tf", "wrench_topics"))
+                   "wave_precision", "datum", "publish_tf", "wrench_topics", "fleet_state"))
     rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
     diag = number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
@@ -61,6 +61,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
         datum=datum_block(d.get("datum")),
         publish_tf=flag(d, "publish_tf", key, True),
         wrench_topics=choice(d, "wrench_topics", key, "auto", WRENCH_TOPICS),
+        fleet_state=flag(d, "fleet_state", key, False),
     )
 
 

@@ -82,6 +82,8 @@ class SimulationSettings:
         datum: the world origin on WGS-84 (GNSS fixes).
         publish_tf: publish ``/tf`` (world -> each boat's base_link) from the true pose.
         wrench_topics: when the ``wrench/<source>`` publishers exist (:data:`WrenchTopics`).
+        fleet_state: also publish every boat's pose and twist in one message,
+            ``/boatsim/fleet_state`` (boat_msgs/FleetState), with odom.
     """
 
     rate_hz: float = 100.0
@@ -98,6 +100,7 @@ class SimulationSettings:
     datum: Datum = field(default_factory=Datum)
     publish_tf: bool = True
     wrench_topics: WrenchTopics = "auto"
+    fleet_state: bool = False
 
 
 @dataclass(frozen=True)
