@@ -191,6 +191,8 @@ def _add_run(verbs) -> None:
     node.add_argument("--await-recorder", action="store_true")
     node.add_argument("--duration", type=_positive_seconds)
     node.add_argument("--quiet", action="store_true")
+    node.add_argument("--checkpoint")  # a shard: its snapshot, saved every simulated second
+    node.add_argument("--resume")  # a restarted shard: continue from this snapshot
     surface = verbs.add_parser("_surface")  # `run`'s surface server (ocean_sim.ros)
     surface.add_argument("--time-file", required=True)
 
@@ -473,6 +475,7 @@ def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
     from boat_dynamics.physics.pipeline import InitError, start
     from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.physics.snapshot import SnapshotError
     from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
@@ -495,10 +498,14 @@ def _run(args: argparse.Namespace) -> int:
                              shards=args.shards, fast=args.fast, lockstep=args.lockstep,
                              record=args.record, exclude_topics=tuple(args.exclude_topics),
                              epoch=args.epoch, ready_fd=args.ready_fd, supervised=True,
-                             await_recorder=args.await_recorder)
+                             await_recorder=args.await_recorder, checkpoint=args.checkpoint,
+                             resume=args.resume)
         try:
             return run(scenario, options, status=open(os.devnull, "w") if args.quiet
                        else sys.stderr)
+        except SnapshotError as exc:
+            print(f"boatsim _node: error: cannot resume: {exc}", file=sys.stderr)
+            return 2
         except InitError as exc:
             first = 0 if args.shard is None else shard_slice(*args.shard,
                                                              len(scenario.boats)).start

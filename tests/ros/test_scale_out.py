@@ -140,18 +140,67 @@ def test_processes_started_apart_join_the_barrier(boatsim, fleet, tmp_path):
     assert "owning the clock of 2 dynamics process(es)" in ocean.output()
 
 
-def test_a_dead_shard_stops_a_fast_run(boatsim, fleet):
-    sim = boatsim("run", str(fleet / "fleet.yaml"), "--fast", "--shards", "2")
+def _pids(sim):
+    """The pids the parent printed: the ocean's, then each shard's."""
     deadline = time.monotonic() + 60
     while "every process ready" not in sim.output():
         assert time.monotonic() < deadline and sim.proc.poll() is None, sim.output()
         time.sleep(0.1)
-    *_, rest = (int(p) for p in re.search(r"pids ([\d ]+)", sim.output()).group(1).split())
+    return [int(p) for p in re.search(r"pids ([\d ]+)", sim.output()).group(1).split()]
+
+
+def test_a_dead_shard_stops_a_lockstep_run(boatsim, fleet):
+    """Under --lockstep a restarted shard would lack the replayer's commands it had received."""
+    sim = boatsim("run", str(fleet / "fleet.yaml"), "--fast", "--lockstep", "--shards", "2")
+    *_, rest = _pids(sim)
     os.kill(rest, signal.SIGKILL)
     assert sim.wait(timeout=30) == 1
     out = sim.output()
     assert f"process shard 1/2 (pid {rest}) died: killed by SIGKILL" in out
-    assert "stopping the run" in out and "Traceback" not in out
+    assert "stopping the run (under --lockstep" in out and "Traceback" not in out
+
+
+#: Six scripted boats (their commands depend on simulation time only), one with an IMU.
+RESUMED = "\n".join(["ocean:", "  spectrum: {significant_height: 1.0, peak_period: 6.0, "
+                      "components: 16}", "boats:"] + [
+    f"  - {{name: b{i}, initial_pose: {{position: [{12 * i}, 0, 0]}}, commands: [{{t: 0, "
+    f"thrust: {0.3 + 0.1 * i:.1f}, rudder: 0.1}}, {{t: 4, thrust: 0.8, rudder: -0.2}}]"
+    + (", sensors: [{type: imu}]" if i == 4 else "") + "}" for i in range(6)])
+
+
+def test_a_killed_shard_resumes_from_its_snapshot_and_rejoins_the_barrier(boatsim, probe,
+                                                                           tmp_path):
+    from rosgraph_msgs.msg import Clock
+
+    from boat_msgs_py.qos import CLOCK_QOS
+
+    scenario = tmp_path / "six.yaml"
+    scenario.write_text(RESUMED)
+    # 40 s of simulation: about 3 s at this machine's 13x, so the kill falls mid-run
+    run = ("run", str(scenario), "--fast", "--shards", "2", "--duration", "40", "--record")
+    reference = _cli(*run, str(tmp_path / "whole"), timeout=180)
+    assert reference.returncode == 0, reference.stderr
+    sim = boatsim(*run, str(tmp_path / "killed"))
+    clock = []
+    probe.node.create_subscription(Clock, "/clock", lambda m: clock.append(m.clock.sec), CLOCK_QOS)
+    *_, rest = _pids(sim)
+    probe.spin_until(lambda: clock and clock[-1] >= 2, 120, "/clock at 2 s")
+    os.kill(rest, signal.SIGKILL)  # shard 1/2: boats b3, b4, b5
+    assert sim.wait(timeout=180) == 1, sim.output()  # a child died: status 1, run completed
+    out = sim.output()
+    assert f"process shard 1/2 (pid {rest}) died: killed by SIGKILL" in out
+    assert re.search(r"restarted shard 1/2 \(pid \d+\) from its snapshot at step \d+00 ", out)
+    assert "resuming at t = " in out and "Traceback" not in out
+    if "has not reported for 2 s" in out:  # the restart took that long (it does here: 3 s)
+        assert "dynamics process 1/2 reports again" in out
+    topics = [f"/b{i}/odom" for i in range(6)] + ["/b4/imu/data", "/b4/wrench/total"]
+    result = compare_bags(tmp_path / "whole", tmp_path / "killed", topics=topics,
+                          tolerances={"*": 0.0})  # bit for bit
+    assert result.ok, result.report()
+    assert {t.topic: t.matched for t in result.topics} == {
+        **{t: 2001 for t in topics[:6]}, "/b4/imu/data": 4000, "/b4/wrench/total": 401}
+    stamps = [t for t, _ in read_bag(tmp_path / "killed", ["/b4/odom"])["/b4/odom"]]
+    assert stamps == sorted(set(stamps))  # each once: the dead part was cut at the snapshot
 
 
 @pytest.mark.parametrize(("args", "message"), [

@@ -34,7 +34,8 @@ from boat_msgs_py.cdr import clock_template, stamp_parts
 from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, STEP_DONE_QOS, STEP_GRANT_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 
-__all__ = ["REPORT_EVERY", "WINDOW_STEPS", "StepConductor", "StepMember", "shard_slice"]
+__all__ = ["REPORT_EVERY", "SILENT_AFTER", "WINDOW_STEPS", "StepConductor", "StepMember",
+           "shard_slice"]
 
 #: How many steps a dynamics process may run ahead of the slowest one (the grant's lead).
 WINDOW_STEPS = 16
@@ -47,6 +48,10 @@ REPORT_EVERY = WINDOW_STEPS // 2
 _REPEAT_PERIOD = 0.1
 #: A conductor waiting for its processes says which it lacks this often, s (wall).
 _MISSING_LOG_PERIOD = 5.0
+#: A dynamics process reports at least this often, s (wall), even while it steps ...
+_REPORT_PERIOD = 0.5
+#: ... so one not heard of for this long has stopped (died, or is being restarted), s.
+SILENT_AFTER = 2.0
 
 
 def shard_slice(index: int, count: int, boats: int) -> slice:
@@ -78,21 +83,28 @@ class StepMember(Node):
         self.executor_ = SingleThreadedExecutor(context=self.context)
         self.executor_.add_node(self)
         self._last: tuple[int, int] | None = None
-        self._next_repeat = 0.0
+        self._next_repeat = self._next_report = 0.0
 
     def _on_grant(self, msg: UInt64) -> None:
         self.granted = max(self.granted, int(msg.data))
 
     def stepped(self, steps: int, commands: int) -> None:
-        """After a step: report every REPORT_EVERY steps and when the grant is used up."""
-        if steps % REPORT_EVERY == 0 or steps >= self.granted:
+        """After a step: report every REPORT_EVERY steps and when the grant is used up.
+
+        And at least every half second (wall): the conductor tells a slow process from a dead
+        one by that.
+        """
+        if (steps % REPORT_EVERY == 0 or steps >= self.granted
+                or time.monotonic() >= self._next_report):
             self.report(steps, commands)
 
     def report(self, steps: int, commands: int) -> None:
         """Say that ``steps`` steps are taken and ``commands`` commands received."""
         self._done.publish(UInt64MultiArray(data=[self.index, self.count, steps, commands]))
         self._last = (steps, commands)
-        self._next_repeat = time.monotonic() + _REPEAT_PERIOD
+        now = time.monotonic()
+        self._next_repeat = now + _REPEAT_PERIOD
+        self._next_report = now + _REPORT_PERIOD
 
     def wait(self, steps: int, commands: Callable[[], int], stop: threading.Event,
              serve: Callable[[], None]) -> bool:
@@ -151,6 +163,8 @@ class StepConductor(Node):
         self._wrong: set[int] = set()
         self._next_repeat = 0.0
         self._next_clock = 0.0
+        self._heard: dict[int, float] = {}  # process -> wall time (monotonic) of its report
+        self._silent: set[int] = set()  # processes said to be silent
 
     def _on_done(self, msg: UInt64MultiArray) -> None:
         if len(msg.data) != 4:
@@ -165,6 +179,11 @@ class StepConductor(Node):
             return
         previous = self._reports.get(index, (0, 0))
         self._reports[index] = (max(previous[0], steps), commands)
+        self._heard[index] = time.monotonic()
+        if index in self._silent:
+            self._silent.discard(index)
+            self.get_logger().info(f"dynamics process {index}/{count} reports again (at step "
+                                   f"{steps}; the run is at step {self.done()}): going on")
 
     def _on_lockstep(self, msg: Float64MultiArray) -> None:
         if len(msg.data) >= 2:
@@ -227,6 +246,17 @@ class StepConductor(Node):
             self._clock_pub.publish(data)
         else:
             self._clock_pub.publish_untapped(data)
+
+    def log_silent(self) -> None:
+        """Say once when a process stops reporting: the run waits for it."""
+        now = time.monotonic()
+        for index, heard in self._heard.items():
+            if index not in self._silent and now - heard > SILENT_AFTER:
+                self._silent.add(index)
+                self.get_logger().warning(
+                    f"dynamics process {index}/{self.count} has not reported for "
+                    f"{SILENT_AFTER:g} s (its last step: {self._reports[index][0]}): the run "
+                    "waits for it")
 
     def log_missing(self, since: float) -> float:
         """Log which processes are missing, every few seconds; returns the next log time."""

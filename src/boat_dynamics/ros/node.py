@@ -23,6 +23,7 @@ from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 from rclpy.context import Context
 from rclpy.node import Node
+from rclpy.parameter import Parameter
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64, Float64MultiArray
@@ -38,6 +39,7 @@ from boat_dynamics.physics.propulsion import MAX_THRUSTERS
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.scenario.specs import ADVERTISED_WRENCH_BOATS, WrenchTopics
+from boat_dynamics.physics.snapshot import SnapshotError, flatten, restore
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import cross
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
@@ -380,6 +382,64 @@ class DynamicsNode(Node):
         self._transforms.publish_static(seconds_to_time(self._sim_clock.epoch
                                                         + self._sim_clock.t))
 
+    # ------------------------------------------------------------------ snapshots
+
+    def snapshot(self) -> dict[str, np.ndarray]:
+        """Everything a process resuming these boats needs, as arrays (physics.snapshot).
+
+        The step count, the boats' state, their command intake (last commands, times,
+        time-outs, counts), control modes and sensors' noise states. Not the sea, the
+        environment or parameters other than the control modes: a resuming process gets
+        those from the ocean and the scenario.
+        """
+        boats = self.boats
+        out = {"format": np.asarray(SNAPSHOT_FORMAT), "steps": np.asarray(self._sim_clock.steps),
+               "stamp_ns": np.asarray(self._sim_clock.stamp_ns()),
+               "boats": np.array([b.spec.name for b in boats], dtype=str),
+               "modes": np.array([b.spec.params.control.mode for b in boats], dtype=str),
+               "commands_received": np.asarray(self.commands_received),
+               **flatten(self._state, "state."), **self._sensors.snapshot()}
+        for name in _BOAT_SCALARS:
+            out[f"boats.{name}"] = np.array([getattr(b, name) for b in boats])
+        for name in _BOAT_PER_THRUSTER:  # padded to MAX_THRUSTERS columns
+            out[f"boats.{name}"] = np.array([[*getattr(b, name),
+                                              *[0] * (MAX_THRUSTERS - len(getattr(b, name)))]
+                                             for b in boats], dtype=float).reshape(-1,
+                                                                                   MAX_THRUSTERS)
+        return out
+
+    def restore(self, arrays: dict[str, np.ndarray]) -> None:
+        """Continue from a :meth:`snapshot` of the same boats (before the first step).
+
+        Raises:
+            SnapshotError: it is not a snapshot of these boats (names, format, shapes).
+        """
+        if int(arrays.get("format", -1)) != SNAPSHOT_FORMAT:
+            raise SnapshotError(f"format: {arrays.get('format')}, expected {SNAPSHOT_FORMAT}")
+        names_ = [b.spec.name for b in self.boats]
+        if arrays["boats"].tolist() != names_:
+            raise SnapshotError(f"boats: the snapshot's are {arrays['boats'].tolist()}, this "
+                                f"process steps {names_}")
+        modes = arrays["modes"].tolist()
+        changed = [Parameter(f"{b.spec.name}.control_mode" if b.spec.name else "control_mode",
+                             value=mode) for b, mode in zip(self.boats, modes, strict=True)
+                   if mode != b.spec.params.control.mode]
+        if changed:  # through the parameters, so that `param get` says it too
+            self.set_parameters(changed)
+        self._sim_clock.steps = int(arrays["steps"])
+        self._state = restore(self._state, arrays, "state.")
+        self._before = None  # the next step sets it (a resumed node publishes after it)
+        self._contact, self._forces = None, None
+        self.commands_received = int(arrays["commands_received"])
+        for i, b in enumerate(self.boats):
+            for name in _BOAT_SCALARS:
+                setattr(b, name, type(getattr(b, name))(arrays[f"boats.{name}"][i]))
+            for name in _BOAT_PER_THRUSTER:
+                kind = bool if name == "thrust_out" else float
+                n = len(getattr(b, name))
+                setattr(b, name, [kind(v) for v in arrays[f"boats.{name}"][i, :n]])
+        self._sensors.restore(arrays)
+
     def boat_positions(self) -> np.ndarray:
         """(K, 2) m, world x, y of every boat's hull reference point."""
         return self._reference_points()[:, :2]
@@ -708,6 +768,14 @@ class DynamicsNode(Node):
               ("commands_clamped", str(boat.clamped))))
             for boat, r in zip(self.boats, reports, strict=True)]))
 
+
+#: The layout of :meth:`DynamicsNode.snapshot` (a resuming process refuses another).
+SNAPSHOT_FORMAT = 1
+#: A boat's command intake kept in a snapshot: numbers ...
+_BOAT_SCALARS = ("throttle", "rudder", "last_thrust_t", "timed_out", "received", "ignored",
+                 "clamped")
+#: ... and per named thruster.
+_BOAT_PER_THRUSTER = ("thrusts", "angles", "thrust_t", "thrust_out")
 
 #: The type of every command topic.
 _COMMAND_TYPE = "std_msgs/msg/Float64"

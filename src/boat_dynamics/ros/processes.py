@@ -23,11 +23,19 @@ keep up with processes running flat out.
 Supervision: the children die with the parent (SIGTERM on its death on Linux, and the end of
 their stdin everywhere); the parent reports a child that dies (which one, how); a dead ocean
 is restarted and joins at the current simulation time with the scenario's sea state (the
-boats keep the last sea state they had meanwhile: they need no ocean to step); a dead
-dynamics process is not (its state is gone), and with ``--fast`` the run stops, as the others
-would wait for it forever. The run's exit status is 1 when any child died. SIGINT and SIGTERM
-are forwarded; the recorder is stopped (its bag finalized) after the simulation's processes.
-Only the first dynamics process shows the status line.
+boats keep the last sea state they had meanwhile: they need no ocean to step). With
+``--fast`` every dynamics process saves a snapshot of its boats every simulated second
+(:data:`boat_dynamics.ros.runner.CHECKPOINT_PERIOD`, its bag part flushed first); a dead one
+is started again from its last snapshot (at most :data:`_RESTARTS` times) and rejoins the
+step barrier, the others waiting for it meanwhile; the merged bag takes the dead process's
+part up to the snapshot and the new one's after it, so each message is there once. What its
+boats received after the snapshot is lost (at most a second of simulation time of commands),
+and subscribers see that second of its boats' topics again. Under ``--lockstep`` a dead
+dynamics process stops the run instead (the replayer's commands it had received since the
+snapshot would be missing; the barrier would wait for them forever); in real time it is not
+restarted (the others go on). The run's exit status is 1 when any child died. SIGINT and
+SIGTERM are forwarded; the recorder is stopped (its bag finalized) after the simulation's
+processes. Only the first dynamics process shows the status line.
 """
 
 from __future__ import annotations
@@ -38,6 +46,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -57,6 +66,8 @@ _GO_AHEAD = 0.5
 _READY_TIMEOUT = 120.0
 #: Period of the parent's watch over its children, s.
 _WATCH_PERIOD = 0.1
+#: A dynamics process is started again at most this many times.
+_RESTARTS = 3
 
 
 @dataclass
@@ -68,6 +79,8 @@ class _Child:
     proc: subprocess.Popen | None = None
     ready_fd: int | None = None  # read end of its ready pipe, until it said ready
     status: int | None = None  # its exit status, once it exited
+    snapshot: Path | None = None  # a dynamics process's snapshot file (--fast, no lockstep)
+    restarts: int = 0
 
 
 def _spawn(child: _Child, handshake: bool) -> None:
@@ -85,7 +98,7 @@ def _spawn(child: _Child, handshake: bool) -> None:
 
 
 def _children(scenario: Scenario, path: str, options: RunOptions,
-              parts: Path | None) -> list[_Child]:
+              parts: Path | None, snapshots: Path | None) -> list[_Child]:
     """The ocean's child and each shard's, with their ``_node`` arguments (no epoch yet).
 
     Args:
@@ -93,6 +106,7 @@ def _children(scenario: Scenario, path: str, options: RunOptions,
         path: its file, which every child reads.
         options: how to run (``shards``, ``fast``, ``lockstep``, ``record``, ...).
         parts: with ``--fast --record``: the directory of each process's bag.
+        snapshots: where each shard saves its snapshot (``--fast``), or None.
     """
     common = [path, *(["--duration", repr(options.duration)] if options.duration else [])]
     if options.fast:
@@ -112,8 +126,11 @@ def _children(scenario: Scenario, path: str, options: RunOptions,
         boats = scenario.boats[shard_slice(k, count, len(scenario.boats))]
         label = (f"boat {boats[0].name or '(root)'}" if len(boats) == 1
                  else f"shard {k}/{count}")
+        snapshot = snapshots / f"shard-{k}.npz" if snapshots is not None else None
         out.append(_Child(label, ["shard", *common, *part(f"shard-{k}"), "--shard",
-                                  f"{k}/{count}", *(["--quiet"] if k else [])]))
+                                  f"{k}/{count}", *(["--quiet"] if k else []),
+                                  *(["--checkpoint", str(snapshot)] if snapshot else [])],
+                          snapshot=snapshot))
     return out
 
 
@@ -186,17 +203,51 @@ def _restart_ocean(ocean: _Child, epoch: float, status: TextIO) -> None:
           "they had meanwhile", file=status)
 
 
+def _restart_shard(shard: _Child, epoch: float, cuts: dict[Path, int],
+                   status: TextIO) -> bool:
+    """Start a dead dynamics process again from its last snapshot; False when it cannot be.
+
+    Its bag part (if it records) is cut at the snapshot's time in ``cuts``: the new process
+    records what follows into a fresh part.
+    """
+    from boat_dynamics.physics.snapshot import SnapshotError, load
+
+    if shard.snapshot is None or shard.restarts >= _RESTARTS:
+        return False
+    try:
+        saved = load(shard.snapshot)
+        stamp_ns, steps = int(saved["stamp_ns"]), int(saved["steps"])
+    except (SnapshotError, KeyError) as exc:
+        print(f"boatsim: cannot restart {shard.label}: {exc}", file=status)
+        return False
+    args = [a for a in shard.args if a != "--await-recorder"]
+    if "--resume" not in args:
+        args += ["--resume", str(shard.snapshot), "--epoch", repr(epoch)]
+    if "--record" in args:  # a fresh part; the dead one's is cut at the snapshot
+        i = args.index("--record") + 1
+        cuts[Path(args[i])] = stamp_ns
+        args[i] = f"{args[i]}+"
+    shard.args, shard.status = args, None
+    shard.restarts += 1
+    _spawn(shard, handshake=False)
+    print(f"boatsim: restarted {shard.label} (pid {shard.proc.pid}) from its snapshot at step "
+          f"{steps} (t = {stamp_ns / 1e9 - epoch:g} s); the other processes wait for it at the "
+          "step barrier; what its boats received since the snapshot is lost", file=status)
+    return True
+
+
 def _watch(children: list[_Child], epoch: float, stopping, status: TextIO,
-           barrier: bool) -> bool:
-    """Until every dynamics process has exited: report deaths, restart the ocean.
+           barrier: bool, cuts: dict[Path, int]) -> bool:
+    """Until every dynamics process has exited: report deaths, restart what can be.
 
     Args:
         children: the ocean's child first.
         epoch: s, wall-clock time of simulation time 0 (a restarted ocean joins on it).
         stopping: forwards the signals the parent received; True once there was one.
         status: where to report.
-        barrier: the processes share a step barrier (``--fast``): a dead dynamics process
-            stops the run.
+        barrier: the processes share a step barrier (``--fast``): a dead dynamics process is
+            restarted from its snapshot, or, when it has none (``--lockstep``), stops the run.
+        cuts: filled with the bag parts of restarted processes and where to cut them, ns.
 
     Returns:
         True when a child died.
@@ -218,9 +269,11 @@ def _watch(children: list[_Child], epoch: float, stopping, status: TextIO,
                   file=status)
             if c is ocean:
                 _restart_ocean(c, epoch, status)
-            elif barrier:
-                print("boatsim: stopping the run: the other processes would wait for its "
-                      "boats at the step barrier forever", file=status)
+            elif barrier and not _restart_shard(c, epoch, cuts, status):
+                why = ("under --lockstep its commands since the snapshot would be missing"
+                       if c.snapshot is None else f"restarted {c.restarts} times already")
+                print(f"boatsim: stopping the run ({why}): the other processes would wait "
+                      "for its boats at the step barrier forever", file=status)
                 stop_processes([s.proc for s in shards], timeout=10.0)
     return died
 
@@ -245,7 +298,10 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
         parts.mkdir(parents=True)
     elif record is not None:
         recorder = _start_recorder(options.record, options.exclude_topics)
-    children = _children(scenario, path, options, parts)
+    snapshots = (Path(tempfile.mkdtemp(prefix="boatsim-snapshots-"))
+                 if options.fast and not options.lockstep else None)
+    children = _children(scenario, path, options, parts, snapshots)
+    cuts: dict[Path, int] = {}
     signals: list[int] = []
     previous = {sig: signal.signal(sig, lambda signum, _: signals.append(signum))
                 for sig in (signal.SIGINT, signal.SIGTERM)}
@@ -278,7 +334,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
             forwarded = len(signals)
             return bool(signals)
 
-        died = _watch(children, epoch, stopping, status, barrier=options.fast)
+        died = _watch(children, epoch, stopping, status, options.fast, cuts)
         stop_processes([children[0].proc])  # the ocean, when it runs with no duration
         ok = all(c.status in (0, None) for c in children) and not died
         return 0 if ok else 1
@@ -288,7 +344,9 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
             stop_processes([recorder], timeout=30.0)
             print(f"boatsim: recorded to {options.record}", file=status)
         if parts is not None:
-            _merge_parts(parts, record, status)
+            _merge_parts(parts, record, status, cuts)
+        if snapshots is not None:
+            shutil.rmtree(snapshots, ignore_errors=True)
         for sig, handler in previous.items():
             signal.signal(sig, handler)
 
@@ -298,15 +356,18 @@ def _clock_words(options: RunOptions) -> str:
             if options.lockstep else "the ocean's process grants every step")
 
 
-def _merge_parts(parts: Path, record: Path, status: TextIO) -> None:
-    """Merge the processes' bags in ``parts`` into ``record``, then remove them."""
+def _merge_parts(parts: Path, record: Path, status: TextIO, cuts: dict[Path, int]) -> None:
+    """Merge the processes' bags in ``parts`` into ``record``, then remove them.
+
+    ``cuts``: the parts of restarted processes, each taken up to its time (ns).
+    """
     from boat_dynamics.tools.bagfile import merge
 
     bags = sorted(p for p in parts.iterdir() if p.is_dir() and any(p.glob("*.mcap")))
     if not bags:
         print(f"boatsim: nothing recorded (no process wrote a bag in {parts})", file=status)
         return
-    counts = merge(bags, record)
+    counts = merge(bags, record, until={p: cuts[p] for p in bags if p in cuts})
     shutil.rmtree(parts, ignore_errors=True)
     print(f"boatsim: recorded {sum(counts.values())} messages on {len(counts)} topics to "
           f"{record} (merged from {len(bags)} processes' bags)", file=status)

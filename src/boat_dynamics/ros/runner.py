@@ -43,7 +43,7 @@ from boat_msgs_py import names
 from boat_msgs_py.qos import RECORD_QOS
 from ocean_sim.ros.node import OceanNode
 
-__all__ = ["RunOptions", "run"]
+__all__ = ["CHECKPOINT_PERIOD", "RunOptions", "run"]
 
 #: Beyond this many publishers and subscriptions, a stopping process does not destroy them
 #: one by one (2,408 took 2.8 s, 14,008 took 67 s: quadratic, measured).
@@ -66,6 +66,8 @@ _DISCOVERY_PERIOD = 1.0
 #: rclpy rebuilds its wait set on every spin (about 5 ms with 10 boats' entities, measured),
 #: so spinning after every physics step cost as much as the physics.
 _FAST_SPIN_PERIOD = 0.05
+#: A shard with a checkpoint saves its boats this often, s of simulation time.
+CHECKPOINT_PERIOD = 1.0
 #: ... and spend at most this fraction of the wall time on it: the wait set grows with the
 #: boats (2 command subscriptions each), and with 100 boats a spin took 4 ms per 10 ms step,
 #: more than the physics. With more boats, callbacks are then served less often than every
@@ -100,6 +102,11 @@ class RunOptions:
             handshake.
         supervised: a ``--processes`` child: end when stdin ends (the parent died).
         await_recorder: with ``ready_fd``: wait for the recorder before saying ready.
+        checkpoint: a shard: save a snapshot of its boats here every
+            :data:`CHECKPOINT_PERIOD` s of simulation time (and at its start), its bag
+            flushed first; None = none.
+        resume: a shard started in a dead one's place: continue from this snapshot (its
+            step count, its boats' state and command intake) instead of the scenario's start.
     """
 
     fast: bool = False
@@ -115,6 +122,8 @@ class RunOptions:
     ready_fd: int | None = None
     supervised: bool = False
     await_recorder: bool = False
+    checkpoint: str | None = None
+    resume: str | None = None
 
 
 def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
@@ -368,11 +377,14 @@ class _Loop:
         if options.role in ("all", "shard"):
             self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
                                          tap=tap, name=_dynamics_name(scenario, options),
-                                         deferred=deferred, stopped=self.stop.is_set,
+                                         deferred=deferred or options.resume is not None,
+                                         stopped=self.stop.is_set,
                                          follow_lockstep=options.shard is None,
                                          advertise_wrenches=self.advertise_wrenches,
                                          context=self.participants.new() if self.nodes else None)
             self.nodes.append(self.dynamics)
+            if options.resume is not None:
+                self._resume(deferred)
             if fast and options.shard is not None:
                 # in the dynamics node's participant: they never talk to each other, and a
                 # participant of its own made 100 boats over 2 shards 2.5x slower (measured)
@@ -421,8 +433,10 @@ class _Loop:
         if not self.fast:
             self._serve_callbacks(wall0)  # --processes: the outputs at t are due at wall0 + t
         if self.dynamics is not None:
-            self.dynamics.publish_outputs()
+            if self.options.resume is None:  # a resumed shard's were its predecessor's
+                self.dynamics.publish_outputs()
             self._report()
+            self._checkpoint()
         if self.ocean is not None:
             self.ocean.advance(self.clock.t)
         self._log_start()
@@ -437,6 +451,8 @@ class _Loop:
             if self.dynamics is not None:
                 self.dynamics.advance()
                 self._report()
+                if self.clock.steps % self._checkpoint_steps == 0:
+                    self._checkpoint()
             else:
                 self.clock.steps += 1
             if self.ocean is not None:
@@ -453,6 +469,33 @@ class _Loop:
         if self.dynamics is not None:
             self.display.update(self.dynamics, self.clock.t, force=True)
         return 0
+
+    def _resume(self, deferred: bool) -> None:
+        """Take the boats' state from ``options.resume`` (a dead shard's last snapshot)."""
+        from boat_dynamics.physics.snapshot import load
+
+        self.dynamics.restore(load(self.options.resume))
+        self.logger.info(f"resuming at t = {self.clock.t:g} s from {self.options.resume}")
+        if not deferred:
+            self.dynamics.start()  # /tf_static, stamped with the resumed time
+
+    @property
+    def _checkpoint_steps(self) -> int:
+        return max(1, round(CHECKPOINT_PERIOD * self.scenario.simulation.rate_hz))
+
+    def _checkpoint(self) -> None:
+        """With ``options.checkpoint``: flush the bag, then save the boats' snapshot.
+
+        In that order, a bag part that survives its process's death holds every message up
+        to the snapshot's time: the resuming process publishes from the next step on.
+        """
+        if self.options.checkpoint is None:
+            return
+        from boat_dynamics.physics.snapshot import save
+
+        if self.bag is not None:
+            self.bag.flush()
+        save(self.options.checkpoint, self.dynamics.snapshot())
 
     def _handshake(self) -> bool:
         """--processes start-up: say ready, wait for the parent's epoch, publish with it.
@@ -531,6 +574,7 @@ class _Loop:
         next_discovery = time.monotonic() + _DISCOVERY_PERIOD
         while clock.steps < conductor.end and not self.stop.is_set():
             done = conductor.serve(0.01)
+            conductor.log_silent()
             while clock.steps < done:
                 clock.steps += 1
                 conductor.publish_clock()

@@ -32,6 +32,7 @@ from boat_dynamics.physics.sensors import (
     stream_key,
     true_motion,
 )
+from boat_dynamics.physics.snapshot import SnapshotError, flatten, restore
 from boat_dynamics.physics.system import FleetState
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
@@ -122,6 +123,38 @@ class SensorPublisher:
 
     def __len__(self) -> int:
         return len(self._sensors)
+
+    def _names(self) -> list[str]:
+        return [f"{sensor.boat.name}/{sensor.spec.name}" for _, sensor in self._sensors]
+
+    def snapshot(self) -> dict[str, np.ndarray]:
+        """Every sensor's noise state, as arrays (:mod:`boat_dynamics.physics.snapshot`)."""
+        out: dict[str, np.ndarray] = {"sensors": np.array(self._names(), dtype=str)}
+        for k, (_, sensor) in enumerate(self._sensors):
+            if isinstance(sensor.state, int):  # an odometry sensor: its reading count
+                out[f"sensor{k}.count"] = np.asarray(sensor.state)
+            else:
+                out.update(flatten(sensor.state, f"sensor{k}."))
+        return out
+
+    def restore(self, arrays: dict[str, np.ndarray]) -> None:
+        """Take every sensor's noise state from a :meth:`snapshot`.
+
+        Raises:
+            SnapshotError: it is not a snapshot of these sensors.
+        """
+        saved = arrays.get("sensors", np.array([], dtype=str)).tolist()
+        if saved != self._names():
+            raise SnapshotError(f"sensors: the snapshot's are {saved}, these are "
+                                f"{self._names()}")
+        for k, (_, sensor) in enumerate(self._sensors):
+            if isinstance(sensor.state, int):
+                if f"sensor{k}.count" not in arrays:
+                    raise SnapshotError(f"sensor{k}.count: missing (a snapshot of other "
+                                        "sensors?)")
+                sensor.state = int(arrays[f"sensor{k}.count"])
+            else:
+                sensor.state = restore(sensor.state, arrays, f"sensor{k}.")
 
     def publish_due(self, due, stamp, center_of_mass: np.ndarray, before: FleetState,
                     after: FleetState) -> None:

@@ -107,6 +107,11 @@ class JazzyWriter(Writer):
         if self.storage is not None:
             self.storage.flush_due(now_ns)
 
+    def flush(self) -> None:
+        """Write out the pending chunk now (its messages survive a kill from here on)."""
+        if self.storage is not None and self.storage.chunk.msgs:
+            self.storage.close_chunk()
+
     def close(self) -> None:
         """Write the summary and metadata.yaml (``ros_distro: jazzy``)."""
         super().close()
@@ -239,7 +244,8 @@ def reindex(path: str | Path) -> ReindexReport:
     return report
 
 
-def merge(parts: list[str | Path], target: str | Path) -> dict[str, int]:
+def merge(parts: list[str | Path], target: str | Path,
+          until: dict[Path, int] | None = None) -> dict[str, int]:
     """Write every message of the bags ``parts`` into one new bag ``target``, in time order.
 
     The processes of a ``run --fast`` over several processes each record what they publish
@@ -250,6 +256,8 @@ def merge(parts: list[str | Path], target: str | Path) -> dict[str, int]:
     Args:
         parts: bag directories, each with one .mcap file.
         target: the bag directory to create; must not exist.
+        until: parts taken only up to a time (ns, inclusive): a killed process's, whose
+            successor resumed from a snapshot of that time and recorded the rest.
 
     Returns:
         Messages per topic in ``target``.
@@ -275,7 +283,8 @@ def merge(parts: list[str | Path], target: str | Path) -> dict[str, int]:
             if not (part / "metadata.yaml").exists():
                 reindex(part)
             files.append(next(part.glob("*.mcap")).open("rb"))
-            messages = make_reader(files[-1]).iter_messages(log_time_order=True)
+            messages = make_reader(files[-1]).iter_messages(
+                log_time_order=True, ending_at=(until or {}).get(part))
             streams.append(((m.log_time, order, schema, channel, m)
                             for schema, channel, m in messages))
         for _, _, schema, channel, message in heapq.merge(*streams, key=lambda x: x[:2]):

@@ -108,6 +108,11 @@ class BagWriter:
         if not self._closed:
             self._writer.flush_due(now_ns)
 
+    def flush(self) -> None:
+        """Write out the pending chunk now, whatever its span (before a snapshot)."""
+        if not self._closed:
+            self._writer.flush()
+
     def tap(self, stamp_ns: Callable[[], int]) -> Tap:
         """A :class:`Tap` writing into this bag, stamped by ``stamp_ns()`` (ns)."""
         tap = Tap(lambda topic, msgtype, data: self.write(topic, msgtype, data, stamp_ns(),

@@ -250,3 +250,20 @@ def test_merge_refuses_what_is_not_a_bag(tmp_path):
     (tmp_path / "junk" / "junk.mcap").write_bytes(b"not an mcap file")
     with pytest.raises(ReindexError, match="not an MCAP file"):
         merge([tmp_path / "junk"], tmp_path / "all")
+
+
+def test_merge_takes_a_restarted_processs_dead_part_up_to_its_snapshot(tmp_path):
+    # the dead process recorded steps 0..249 (killed: no summary), flushing its bag at the
+    # snapshot of step 200; its successor resumed from that snapshot and recorded 201..299
+    writer = JazzyWriter(tmp_path / "dead")
+    writer.open()
+    conn = writer.add_connection("/clock", CLOCK, typestore=typestore())
+    for i in range(250):
+        writer.write(conn, i * STEP_NS, _clock(i * STEP_NS))
+        if i == 200:
+            writer.flush()
+    _clock_bag(tmp_path / "dead+", list(range(201, 300)))
+    counts = merge([tmp_path / "dead", tmp_path / "dead+"], tmp_path / "all",
+                   until={tmp_path / "dead": 200 * STEP_NS})
+    assert counts == {"/clock": 300}
+    assert _stamps(tmp_path / "all") == [i * STEP_NS for i in range(300)]  # each once
