@@ -28,6 +28,7 @@ __all__ = [
     "THRUSTER_ANGLE",
     "THRUSTER_THRUST",
     "TWIST",
+    "UNKNOWN_NODE",
     "WAVE_FIELD",
     "WORLD_FRAME",
     "WRENCH_SOURCES",
@@ -92,6 +93,8 @@ WORLD_FRAME = "world"
 
 #: The node of `boatsim record` (the --processes children wait until it subscribes to them).
 RECORDER_NODE = "boatsim_record"
+#: The node name rmw gives an endpoint whose node it does not know yet (the graph lags).
+UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
 
 
 def boat_topic(boat: str, name: str) -> str:

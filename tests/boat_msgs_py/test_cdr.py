@@ -200,3 +200,16 @@ def test_fleet_state_bytes_equal_rclpys_with_zeroed_padding(boats, frame, t, dat
     packed = FleetStateTemplate(frame, boats).pack(sec, nanosec, v[:, :7], v[:, 7:])
     assert packed == zero_padding(serialize_message(msg), "boat_msgs/msg/FleetState")
     assert deserialize_message(packed, FleetState) == msg
+
+
+@given(st.lists(st.integers(0, 2**64 - 1), min_size=1, max_size=6))  # reports: 4 values
+def test_uint64_multi_array_bytes_equal_rclpys_with_zeroed_padding(values):
+    from std_msgs.msg import UInt64MultiArray
+
+    from boat_msgs_py.cdr import uint64_multi_array_cdr
+    from boat_msgs_py.typestore import zero_padding
+
+    data = uint64_multi_array_cdr(values)
+    msg = UInt64MultiArray(data=values)
+    assert data == zero_padding(serialize_message(msg), "std_msgs/msg/UInt64MultiArray")
+    assert deserialize_message(data, UInt64MultiArray) == msg

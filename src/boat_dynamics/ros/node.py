@@ -177,8 +177,9 @@ class DynamicsNode(Node):
             where the clock's epoch is known only once every process is ready).
         stopped: checked between boats while they are made: a large fleet's start-up stops
             on Ctrl-C (raises StartInterrupted) instead of making every boat first.
-        follow_lockstep: subscribe to /boatsim/lockstep (False for a shard, whose clock owner
-            does: a replayer then waits for the owner, not for a shard).
+        follow_lockstep: subscribe to /boatsim/lockstep (False for a shard of a step barrier,
+            whose clock owner does: a replayer then waits for the owner, not for a shard; a
+            real-time shard does, so that a replayer knows a simulation is there).
         context: the rclpy context (DDS participant) to live in; None = the default one.
         advertise_wrenches: make every boat's ``wrench/<source>`` publishers now; False = each
             once someone subscribes to it (:func:`advertises_wrenches`).

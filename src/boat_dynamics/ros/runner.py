@@ -286,8 +286,6 @@ _BARRIER_TOPICS = frozenset({names.STEP_GRANT, names.STEP_DONE})
 _NOT_SHARDS = frozenset({names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP})
 
 
-#: The node name rmw gives an endpoint whose node it does not know yet.
-_UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
 
 
 def _tapped_by_shards(node, topic: str) -> bool | None:
@@ -301,7 +299,7 @@ def _tapped_by_shards(node, topic: str) -> bool | None:
              *node.get_subscriptions_info_by_topic(topic))
     if any(info.node_name.startswith("boat_dynamics") for info in infos):
         return True
-    if any(info.node_name in ("", _UNKNOWN_NODE) for info in infos):
+    if any(info.node_name in ("", names.UNKNOWN_NODE) for info in infos):
         return None
     return False
 
@@ -379,7 +377,7 @@ class _Loop:
                                          tap=tap, name=_dynamics_name(scenario, options),
                                          deferred=deferred or options.resume is not None,
                                          stopped=self.stop.is_set,
-                                         follow_lockstep=options.shard is None,
+                                         follow_lockstep=options.shard is None or not fast,
                                          advertise_wrenches=self.advertise_wrenches,
                                          context=self.participants.new() if self.nodes else None)
             self.nodes.append(self.dynamics)

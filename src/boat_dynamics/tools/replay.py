@@ -108,10 +108,19 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
                 raise ReplayError(f"timed out after {timeout:g} s waiting for {what}")
             executor.spin_once(timeout_sec=0.01)
 
+    def simulation_found() -> bool:
+        # The lockstep topic's subscriber must be the simulation's (its dynamics node, its
+        # clock owner, or real-time --processes children), not a recorder's: a sharded run's
+        # recorder, in a participant of its own, may be discovered before the clock owner,
+        # whose /clock then came too late, and the replay fell back to the wall clock while
+        # the simulation waited at t = 0 for grants (seen in a loaded test run).
+        followers = {i.node_name for i in node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
+        followers.discard(names.RECORDER_NODE)
+        return (all(p.get_subscription_count() > 0 for p in pubs.values()) and bool(followers)
+                and not followers & {"", names.UNKNOWN_NODE})
+
     try:
-        spin_until(lambda: all(p.get_subscription_count() > 0 for p in pubs.values())
-                   and grant.get_subscription_count() > 0,
-                   f"a simulation subscribing to {', '.join(pubs)}")
+        spin_until(simulation_found, f"a simulation subscribing to {', '.join(pubs)}")
         deadline = time.monotonic() + 2.0
         while math.isnan(clock[0]) and time.monotonic() < deadline:
             executor.spin_once(timeout_sec=0.05)
