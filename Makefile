@@ -13,7 +13,7 @@ MSGS_SRC := $(foreach p,$(MSG_PKGS),ros2_ws/src/$(p)/CMakeLists.txt ros2_ws/src/
 ROSENV := VIRTUAL_ENV=$(abspath $(VENV)) AMENT_PREFIX_PATH=$(abspath $(VENV)) PATH=$(abspath $(VENV))/bin:$$PATH
 ARGS ?=
 
-.PHONY: setup run test bench lint clean regold bem
+.PHONY: setup run view test bench lint clean regold bem browser
 
 setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
 
@@ -43,9 +43,28 @@ $(VENV)/.msgs-built: $(VENV)/.ros-installed $(MSGS_SRC)
 run: setup
 	$(VENV)/bin/boatsim run $(ARGS)
 
+# `boatsim view` needs the view extra (Rerun), installed on first use.
+$(VENV)/.view-installed: $(VENV)/.deps-installed requirements/view.txt
+	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements/view.txt
+	@touch $@
+
+view: setup $(VENV)/.view-installed
+	$(VENV)/bin/boatsim view $(ARGS)
+
+# The browser of tests/ros/test_view.py (headless Chromium driven through Selenium): Debian's
+# chromium and chromium-driver, installed with apt when missing (as root; about 20 s).
+browser:
+	@if command -v chromium >/dev/null && command -v chromedriver >/dev/null; then :; \
+	elif command -v apt-get >/dev/null && [ "$$(id -u)" = 0 ]; then \
+	    echo "installing Debian's chromium and chromium-driver (the view's browser test)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
+	        apt-get install -y -qq chromium chromium-driver > /dev/null || exit 1; \
+	else echo "warning: no chromium/chromedriver and no apt-get as root: install them for" \
+	          "tests/ros/test_view.py (Debian: apt-get install chromium chromium-driver)"; fi
+
 # Without ARGS: the tests that start no ROS processes on both cores (pytest-xdist: 9.5 -> 6
 # min here), then the ROS end-to-end tests one at a time (they run boatsim processes).
-test: setup
+test: setup $(VENV)/.view-installed browser
 	$(VENV)/bin/ruff check src tests benchmarks examples
 ifeq ($(strip $(ARGS)),)
 	$(VPY) -m pytest -n 2 --ignore=tests/ros

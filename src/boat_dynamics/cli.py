@@ -80,6 +80,13 @@ def _whole_number(text: str) -> int:
     return _integer(text, 0)
 
 
+def _port(text: str) -> int:
+    value = _integer(text, 1)
+    if value > 65535:
+        raise argparse.ArgumentTypeError(f"{text!r}: a port is at most 65535")
+    return value
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="boatsim", description="ROS 2 simulation of boats on Gerstner waves.")
@@ -90,6 +97,7 @@ def _parser() -> argparse.ArgumentParser:
     _add_rao(verbs)
     _add_hydro(verbs)
     _add_introspection(verbs)
+    _add_view(verbs)
     teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
     teleop.add_argument("--ns", default="", metavar="NAME",
                         help="the boat's namespace (default: the root namespace)")
@@ -261,6 +269,75 @@ def _add_bag_verbs(verbs) -> None:
                         help="speed factor against a real-time simulation (default 1)")
     replay.add_argument("--timeout", type=_positive_seconds, default=30.0, metavar="S",
                         help="seconds to wait for the simulation (default 30)")
+
+
+def _add_view(verbs) -> None:
+    """``view``: the boats on the sea in 3-D in a browser (Rerun), live or from a bag."""
+    from boat_dynamics.tools.scene import DEFAULT_SOURCES
+    from boat_msgs_py.names import WRENCH_SOURCES
+
+    view = verbs.add_parser(
+        "view", help="the boats on the sea in 3-D in a browser (live, or a bag)",
+        description="Serve a 3-D view of the running simulation (or of BAG) on this machine: "
+                    "the hulls at their poses, the sea around them, their paths and the "
+                    "forces on them, in Rerun's web viewer (the `view` extra). Open the URL "
+                    "it prints. Hull shapes come from --scenario (default: the default "
+                    "scenario); other boats are drawn as 4 x 2 x 1 m boxes.")
+    view.add_argument("bag", nargs="?", metavar="BAG", help="a recorded run (default: live)")
+    view.add_argument("--scenario", metavar="SCENARIO", help="the hulls' shapes")
+    view.add_argument("--save", metavar="FILE.rrd",
+                      help="write a Rerun recording instead of serving (`rerun FILE.rrd`)")
+    view.add_argument("--web-port", type=_port, default=9090, metavar="N",
+                      help="HTTP port of the web viewer (default 9090)")
+    view.add_argument("--grpc-port", type=_port, default=9876, metavar="N",
+                      help="port of the Rerun server the page connects to (default 9876)")
+    view.add_argument("--wrenches", nargs="*", choices=WRENCH_SOURCES,
+                      default=list(DEFAULT_SOURCES), metavar="SOURCE",
+                      help="wrench sources drawn as arrows over the centre of mass, a hull "
+                           "length at full thrust (default: "
+                           f"{' '.join(DEFAULT_SOURCES)}; none: no arrows; any of "
+                           f"{', '.join(WRENCH_SOURCES)})")
+    view.add_argument("--sea-size", type=_positive, default=60.0, metavar="M",
+                      help="side of the sea drawn, m (widened to the fleet; default 60)")
+    view.add_argument("--sea-resolution", type=_positive, default=1.0, metavar="M",
+                      help="grid step of the sea, m (default 1)")
+    view.add_argument("--duration", type=_positive_seconds, metavar="S",
+                      help="live: stop drawing after S s of simulation time")
+
+
+def _view(args: argparse.Namespace) -> int:
+    import signal
+    import threading
+
+    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.tools.bags import BagError
+    from boat_dynamics.tools.view import ViewError, ViewOptions, view_bag, view_live
+
+    path = args.scenario or default_scenario_path()
+    try:
+        scenario = load_scenario(path)
+    except ScenarioError as exc:
+        print(f"boatsim view: error: invalid scenario {path}: {exc}", file=sys.stderr)
+        return 2
+    if args.save:
+        Path(args.save).parent.mkdir(parents=True, exist_ok=True)
+    options = ViewOptions(scenario=scenario, save=args.save, web_port=args.web_port,
+                          grpc_port=args.grpc_port, sources=tuple(args.wrenches),
+                          sea_size=args.sea_size, sea_resolution=args.sea_resolution,
+                          duration=args.duration)
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set())
+                for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        if args.bag:
+            return view_bag(args.bag, options, stop=stop)
+        return view_live(options, stop=stop)
+    except (BagError, ViewError) as exc:
+        print(f"boatsim view: error: {exc}", file=sys.stderr)
+        return 2
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
 
 
 def _add_rao(verbs) -> None:
@@ -632,6 +709,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _rao(args)
         if args.verb == "hydro":
             return _hydro(args)
+        if args.verb == "view":
+            return _view(args)
         if args.verb == "record":
             from boat_dynamics.tools.recording import RecordError, record
 

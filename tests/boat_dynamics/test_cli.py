@@ -5,7 +5,7 @@ import pytest
 from boat_dynamics.cli import main
 
 VERBS = ("run", "query", "record", "compare", "reindex", "plot", "replay", "rao", "hydro",
-         "topic", "node", "param", "teleop")
+         "topic", "node", "param", "view", "teleop")
 
 
 def test_help_lists_the_public_verbs_and_hides_the_internal_one(capsys):

@@ -15,6 +15,7 @@ from rosbags.highlevel import AnyReader
 from rosbags.rosbag2 import StoragePlugin, Writer
 from rosbags.typesys import Stores, get_typestore
 from std_msgs.msg import Float64
+from support import cli_run
 
 from boat_dynamics.tools.bags import compare_bags
 
@@ -24,17 +25,12 @@ boats: [{commands: [{t: 0, thrust: 1.0, rudder: 0.0}, {t: 2, thrust: 1.0, rudder
 """
 
 
-def _cli(*args, timeout=120):
-    return subprocess.run([sys.executable, "-m", "boat_dynamics", *args], capture_output=True,
-                          text=True, timeout=timeout)
-
-
 @pytest.fixture(scope="module")
 def two_runs(tmp_path_factory):
     d = tmp_path_factory.mktemp("runs")
     (d / "s.yaml").write_text(SCRIPTED)
     for name in ("a", "b"):
-        out = _cli("run", str(d / "s.yaml"), "--fast", "--duration", "4", "--record",
+        out = cli_run("run", str(d / "s.yaml"), "--fast", "--duration", "4", "--record",
                    str(d / name))
         assert out.returncode == 0, out.stderr
     return d
@@ -64,7 +60,7 @@ def test_same_scenario_same_commands_give_identical_bags(two_runs):
     assert "/rosout" not in topics
     odom = next(t for t in result.topics if t.topic == "/odom")
     assert odom.matched == 201 and all(f.max_abs == 0.0 for f in odom.fields)
-    assert _cli("compare", str(two_runs / "a"), str(two_runs / "b")).returncode == 0
+    assert cli_run("compare", str(two_runs / "a"), str(two_runs / "b")).returncode == 0
 
 
 def test_compare_detects_a_perturbation_and_names_the_field(two_runs, tmp_path):
@@ -75,10 +71,10 @@ def test_compare_detects_a_perturbation_and_names_the_field(two_runs, tmp_path):
     assert worst.field == "pose.pose.position.x"
     assert worst.max_abs == pytest.approx(0.01, rel=1e-9)
     assert worst.stamp_ns / 1e9 == pytest.approx(when)
-    out = _cli("compare", str(two_runs / "a"), str(tmp_path / "p"), "--topics", "/odom")
+    out = cli_run("compare", str(two_runs / "a"), str(tmp_path / "p"), "--topics", "/odom")
     assert out.returncode == 1
     assert "pose.pose.position.x: max |a - b| = 0.01 at t = " in out.stdout
-    ok = _cli("compare", str(two_runs / "a"), str(tmp_path / "p"), "--topics", "/odom",
+    ok = cli_run("compare", str(two_runs / "a"), str(tmp_path / "p"), "--topics", "/odom",
               "--tol", "*.position.*=0.02")
     assert ok.returncode == 0, ok.stdout
 
@@ -98,7 +94,7 @@ def test_bad_inputs_exit_2_with_one_line(two_runs, tmp_path, args, fragment):
     corrupt.mkdir()
     (corrupt / "metadata.yaml").write_text("this: [is not a bag\n")
     args = [a.format(a=two_runs / "a", corrupt=corrupt) for a in args]
-    out = _cli(*args)
+    out = cli_run(*args)
     assert out.returncode == 2
     assert fragment in out.stderr and "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
@@ -106,7 +102,7 @@ def test_bad_inputs_exit_2_with_one_line(two_runs, tmp_path, args, fragment):
 
 def test_plot_writes_a_png_of_the_expected_size(two_runs, tmp_path):
     target = tmp_path / "run.png"
-    out = _cli("plot", str(two_runs / "a"), "-o", str(target))
+    out = cli_run("plot", str(two_runs / "a"), "-o", str(target))
     assert out.returncode == 0, out.stderr
     data = target.read_bytes()
     assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20_000
@@ -191,7 +187,7 @@ def test_two_lockstep_replays_give_identical_outputs(boatsim, tmp_path):
     for name in ("a", "b"):
         sim = boatsim("run", "--fast", "--lockstep", "--duration", "4", "--record",
                       str(tmp_path / name), name=f"sim_{name}")
-        out = _cli("replay", str(tmp_path / "commands"), timeout=60)
+        out = cli_run("replay", str(tmp_path / "commands"), timeout=60)
         assert out.returncode == 0, out.stderr
         assert sim.wait(timeout=60) == 0
         runs.append(tmp_path / name)
@@ -215,13 +211,13 @@ def test_two_lockstep_replays_give_identical_outputs(boatsim, tmp_path):
 
 def test_replay_without_a_simulation_or_commands_exits_2(tmp_path):
     _command_bag(tmp_path / "commands")
-    out = _cli("replay", str(tmp_path / "commands"), "--timeout", "1")
+    out = cli_run("replay", str(tmp_path / "commands"), "--timeout", "1")
     assert out.returncode == 2 and "waiting for a simulation" in out.stderr
     assert "Traceback" not in out.stderr
     store = get_typestore(Stores.ROS2_JAZZY)
     with Writer(tmp_path / "empty", version=9, storage_plugin=StoragePlugin.MCAP) as writer:
         writer.add_connection("/odom", "nav_msgs/msg/Odometry", typestore=store)
-    out = _cli("replay", str(tmp_path / "empty"))
+    out = cli_run("replay", str(tmp_path / "empty"))
     assert out.returncode == 2 and "no command topics" in out.stderr
 
 
@@ -229,7 +225,7 @@ def test_run_record_loses_nothing_with_ten_boats(tmp_path):
     boats = "\n".join(f"  - {{name: b{i}, initial_pose: {{position: [{12 * i}.0, 0.0, 0.0]}}}}"
                       for i in range(10))
     (tmp_path / "fleet.yaml").write_text(f"boats:\n{boats}\n")
-    out = _cli("run", str(tmp_path / "fleet.yaml"), "--fast", "--duration", "2", "--record",
+    out = cli_run("run", str(tmp_path / "fleet.yaml"), "--fast", "--duration", "2", "--record",
                str(tmp_path / "bag"), timeout=180)
     assert out.returncode == 0, out.stderr
     with AnyReader([tmp_path / "bag"]) as reader:
@@ -254,7 +250,7 @@ def test_undecodable_messages_exit_2_with_one_line(two_runs, tmp_path):
         writer.write(conn, 0, b"\x00\x01\x00")  # 3 bytes: not a float64 + int32
     for args in (["compare", str(bad), str(two_runs / "a"), "--topics", "/odom"],
                  ["plot", str(bad)]):
-        out = _cli(*args)
+        out = cli_run(*args)
         assert out.returncode == 2, out.stderr
         assert "cannot decode /odom [foo_msgs/msg/Bar]" in out.stderr
         assert len(out.stderr.strip().splitlines()) == 1 and "Traceback" not in out.stderr
@@ -273,7 +269,7 @@ def test_two_identical_runs_give_byte_identical_bags(tmp_path):
     # /rosout is stamped by the wall clock, so it is left out
     (tmp_path / "s.yaml").write_text(SENSORS)
     for run in ("x", "y"):
-        out = _cli("run", str(tmp_path / "s.yaml"), "--fast", "--duration", "2", "--record",
+        out = cli_run("run", str(tmp_path / "s.yaml"), "--fast", "--duration", "2", "--record",
                    str(tmp_path / run / "bag"), "--exclude-topics", "/rosout")
         assert out.returncode == 0, out.stderr
     with AnyReader([tmp_path / "x" / "bag"]) as reader:
@@ -298,10 +294,10 @@ def test_a_killed_run_loses_at_most_its_last_second_after_reindex(boatsim, probe
     t_seen = seen[-1].clock.sec + seen[-1].clock.nanosec * 1e-9
     sim.stop(signal.SIGKILL)
     assert not (bag / "metadata.yaml").exists()
-    refused = _cli("plot", str(bag), "-o", str(tmp_path / "p.png"))
+    refused = cli_run("plot", str(bag), "-o", str(tmp_path / "p.png"))
     assert refused.returncode == 2 and f"boatsim reindex {bag}" in refused.stderr
 
-    out = _cli("reindex", str(bag))
+    out = cli_run("reindex", str(bag))
 
     assert out.returncode == 0, out.stderr
     with AnyReader([bag]) as reader:
@@ -311,4 +307,4 @@ def test_a_killed_run_loses_at_most_its_last_second_after_reindex(boatsim, probe
     assert stamps == sorted(stamps) and stamps[0] == 0
     assert stamps[-1] / 1e9 > t_seen - 1.0, (stamps[-1] / 1e9, t_seen)
     assert abs(counts["/odom"] - counts["/clock"] / 2) <= 2  # odom at 50 Hz, clock at 100
-    assert _cli("plot", str(bag), "-o", str(tmp_path / "p.png")).returncode == 0
+    assert cli_run("plot", str(bag), "-o", str(tmp_path / "p.png")).returncode == 0

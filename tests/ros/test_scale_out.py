@@ -3,13 +3,12 @@
 import os
 import re
 import signal
-import subprocess
-import sys
 import time
 
 import pytest
 from rosbags.rosbag2 import StoragePlugin, Writer
 from rosbags.typesys import Stores, get_typestore
+from support import cli_run
 
 from boat_dynamics.tools.bagfile import merge
 from boat_dynamics.tools.bags import compare_bags, read_bag
@@ -35,25 +34,20 @@ boats:
 ODOM = ["/alpha/odom", "/bravo/odom", "/charlie/odom"]
 
 
-def _cli(*args, timeout=120):
-    return subprocess.run([sys.executable, "-m", "boat_dynamics", *args], capture_output=True,
-                          text=True, timeout=timeout)
-
-
 @pytest.fixture(scope="module")
 def fleet(tmp_path_factory):
     d = tmp_path_factory.mktemp("fleet")
     (d / "fleet.yaml").write_text(FLEET)
     (d / "fleet64.yaml").write_text(FLEET.replace("{seed: 1}", "{seed: 1, wave_precision: "
                                                                 "float64}"))
-    out = _cli("run", str(d / "fleet.yaml"), "--fast", "--duration", "3", "--record",
+    out = cli_run("run", str(d / "fleet.yaml"), "--fast", "--duration", "3", "--record",
                str(d / "one"))
     assert out.returncode == 0, out.stderr
     return d
 
 
 def _run(fleet, name, *args, scenario="fleet.yaml"):
-    out = _cli("run", str(fleet / scenario), "--fast", "--duration", "3", "--record",
+    out = cli_run("run", str(fleet / scenario), "--fast", "--duration", "3", "--record",
                str(fleet / name), *args, timeout=180)
     assert out.returncode == 0, out.stderr
     assert "Traceback" not in out.stderr
@@ -112,7 +106,7 @@ def test_a_lockstep_replay_through_shards_matches_one_process(boatsim, fleet, tm
     for name, extra in (("one", ()), ("shards", ("--shards", "2"))):
         sim = boatsim("run", str(fleet / "fleet.yaml"), "--fast", "--lockstep", "--duration",
                       "3", "--record", str(tmp_path / name), *extra, name=name)
-        out = _cli("replay", str(tmp_path / "commands"), timeout=90)
+        out = cli_run("replay", str(tmp_path / "commands"), timeout=90)
         assert out.returncode == 0, out.stderr
         assert sim.wait(timeout=90) == 0, sim.output()
         runs[name] = tmp_path / name
@@ -178,7 +172,7 @@ def test_a_killed_shard_resumes_from_its_snapshot_and_rejoins_the_barrier(boatsi
     scenario.write_text(RESUMED)
     # 40 s of simulation: about 3 s at this machine's 13x, so the kill falls mid-run
     run = ("run", str(scenario), "--fast", "--shards", "2", "--duration", "40", "--record")
-    reference = _cli(*run, str(tmp_path / "whole"), timeout=180)
+    reference = cli_run(*run, str(tmp_path / "whole"), timeout=180)
     assert reference.returncode == 0, reference.stderr
     sim = boatsim(*run, str(tmp_path / "killed"))
     clock = []
@@ -212,6 +206,6 @@ def test_a_killed_shard_resumes_from_its_snapshot_and_rejoins_the_barrier(boatsi
     (("--fast", "--shards", "4"), "at most one shard per boat"),
 ])
 def test_sharding_mistakes_exit_2_saying_what_is_allowed(fleet, args, message):
-    out = _cli("run", str(fleet / "fleet.yaml"), *args, timeout=60)
+    out = cli_run("run", str(fleet / "fleet.yaml"), *args, timeout=60)
     assert out.returncode == 2 and message in out.stderr, out.stderr
     assert "Traceback" not in out.stderr

@@ -1,0 +1,273 @@
+"""What `boatsim view` draws, logged to a Rerun recording (https://rerun.io).
+
+The boats' hulls at their poses, the sea around them, their paths and the forces on them.
+
+Frames: Rerun's world is boatsim's ``world`` (ENU, z up: REP-103); each boat's entity
+``world/<boat>`` carries the pose of its hull reference point (as its odom) and its children
+are in its body frame (FLU): the hull mesh, and the force arrows at its centre of mass. Time:
+the ``sim_time`` timeline, seconds of simulation time, so a bag and a live run scrub alike.
+
+The sea is a mesh of the Gerstner surface (:func:`ocean_sim.physics.waves.sample_surface`,
+heights with the horizontal displacement inverted) on a grid that follows the fleet, its
+vertices on world-fixed points, coloured from trough to crest.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from boat_dynamics.physics.hull import box_mesh
+from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.model import BoatParams
+from ocean_sim.physics.waves import WaveField, sample_surface
+
+__all__ = ["DEFAULT_SOURCES", "HullShape", "Scene", "hull_shape", "sea_mesh"]
+
+#: Wrench sources drawn unless asked otherwise: the ones of the size of the thrust
+#: (buoyancy and the total are of the size of the boat's weight, 20x longer; the damping
+#: holds the radiation force in heave, several times the thrust).
+DEFAULT_SOURCES = ("thrust", "rudder", "drag", "wind")
+#: The most sea-mesh vertices drawn at a time (a wide fleet gets a coarser grid).
+MAX_SEA_VERTICES = 40_000
+#: The path of each boat: a point every this many s of simulation time ...
+_PATH_STEP = 0.2
+#: ... the most points kept, and the period of its redraw, s of simulation time.
+_PATH_POINTS = 5000
+_PATH_PERIOD = 1.0
+#: Trough and crest colours of the sea, RGB.
+_TROUGH, _CREST = np.array([12, 44, 92]), np.array([96, 168, 222])
+#: Colours of the hulls (boat i gets colour i modulo the count) and of the force arrows.
+_HULL_COLOURS = ((232, 118, 36), (240, 200, 40), (214, 64, 64), (150, 90, 200),
+                 (60, 180, 110), (230, 230, 230))
+_ARROW_COLOURS = {"thrust": (255, 60, 60), "rudder": (255, 170, 0), "drag": (120, 220, 255),
+                  "damping": (90, 230, 140), "wind": (245, 245, 245), "buoyancy": (70, 120, 255),
+                  "diffraction": (200, 120, 255), "slamming": (255, 90, 200),
+                  "total": (255, 255, 120)}
+
+
+@dataclass(frozen=True)
+class HullShape:
+    """What is drawn of a boat.
+
+    Attributes:
+        vertices: (V, 3) m, body frame, origin at the hull reference point.
+        faces: (F, 3) vertex indices.
+        arrow_origin: (3,) m, body frame, where the force arrows start: above the centre of
+            mass, over the deck (an arrow from the centre of mass itself would be hidden in
+            the hull).
+        force_scale: m of arrow per N of force.
+        arrow_radius: m, the arrows' thickness (3 % of the hull's length).
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    arrow_origin: np.ndarray
+    force_scale: float
+    arrow_radius: float
+
+
+def hull_shape(params: BoatParams | None) -> HullShape:
+    """A boat's hull as its buoyancy mesh (or bounding box), arrows scaled to its thrust.
+
+    An arrow is the hull's length at the boat's full thrust (all thrusters together), or at
+    a twentieth of its weight when it has none. ``params`` None: the default 4 x 2 x 1
+    m box of 4100 kg, 2 kN (a boat the scenario given to the viewer does not have).
+    """
+    if params is None:
+        from boat_dynamics.physics.hull import BoxHull
+
+        mesh, com, length, thrust = box_mesh(BoxHull(4.0, 2.0, 1.0)), np.zeros(3), 4.0, 2000.0
+    else:
+        buoyancy = params.buoyancy
+        mesh = buoyancy.mesh if isinstance(buoyancy, MeshBuoyancy) else box_mesh(params.hull)
+        com, length = np.asarray(params.center_of_mass, dtype=float), params.hull.length
+        thrust = sum(float(np.max(t.max_thrust)) for t in params.thrusters)
+        if thrust <= 0.0:
+            thrust = params.mass * params.gravity / 20.0
+    vertices = np.asarray(mesh.vertices, dtype=float)
+    origin = np.array([com[0], com[1], vertices[:, 2].max() + 0.1 * length])
+    return HullShape(vertices, np.asarray(mesh.faces), origin, length / thrust, 0.03 * length)
+
+
+def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resolution: float
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The sea surface on a square grid around ``centre``.
+
+    The grid's points are world-fixed multiples of ``resolution`` (the mesh does not swim
+    with the fleet), at most :data:`MAX_SEA_VERTICES` of them (coarser when ``size`` asks for
+    more).
+
+    Args:
+        sea: the sea state.
+        t: s, simulation time.
+        centre: (2,) m, world x, y.
+        size: m, side of the square.
+        resolution: m between grid points.
+
+    Returns:
+        vertices (V, 3) m world, triangles (T, 3) indices, colours (V, 3) uint8.
+    """
+    n = math.ceil(size / resolution) + 1
+    if n * n > MAX_SEA_VERTICES:
+        n = int(math.sqrt(MAX_SEA_VERTICES))
+        resolution = size / (n - 1)
+    start = np.round((np.asarray(centre, dtype=float) - size / 2) / resolution) * resolution
+    ticks_x, ticks_y = start[0] + resolution * np.arange(n), start[1] + resolution * np.arange(n)
+    gx, gy = np.meshgrid(ticks_x, ticks_y, indexing="ij")
+    xy = np.column_stack([gx.ravel(), gy.ravel()])
+    heights = sample_surface(sea, xy, t, precision="float32").heights
+    idx = np.arange(n * n).reshape(n, n)
+    a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:]
+    triangles = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d.ravel()], 1)])
+    reach = max(sum(c.amplitude for c in sea.components), 1e-9)
+    share = np.clip(0.5 + 0.5 * heights / reach, 0.0, 1.0)[:, None]
+    colours = (_TROUGH + share * (_CREST - _TROUGH)).astype(np.uint8)
+    return np.column_stack([xy, heights]), triangles, colours
+
+
+class Scene:
+    """A fleet on the sea, logged to a Rerun recording as its data comes.
+
+    Args:
+        recording: a ``rerun.RecordingStream``.
+        shapes: each boat's :class:`HullShape`, by boat name ("" = the root namespace); a boat
+            not among them is drawn as the default box.
+        sources: the wrench sources to draw as arrows.
+        sea_size: m, side of the sea drawn (widened to the fleet's extent plus 20 m).
+        sea_resolution: m between its grid points.
+        sea_period: s of simulation time between two drawings of the sea.
+    """
+
+    def __init__(self, recording, shapes: dict[str, HullShape],
+                 sources: Sequence[str] = DEFAULT_SOURCES, sea_size: float = 60.0,
+                 sea_resolution: float = 1.0, sea_period: float = 0.5) -> None:
+        import rerun as rr
+
+        self._rr, self._rec = rr, recording
+        self._shapes, self.sources = dict(shapes), tuple(sources)
+        self._sea_size, self._sea_resolution, self._sea_period = (sea_size, sea_resolution,
+                                                                  sea_period)
+        self._next_sea = -math.inf
+        self._boats: dict[str, int] = {}  # name -> colour index, once drawn
+        self._positions: dict[str, np.ndarray] = {}  # the latest, (3,) m
+        self._paths: dict[str, list[np.ndarray]] = {}
+        self._next_path: dict[str, float] = {}
+        self._next_path_log = -math.inf
+        self._focus: str | None = None  # the boat the camera follows (blueprint)
+        self.t = 0.0  # the simulation time of what is being drawn, s
+        for entity in ("world", "world/focus"):
+            self._log(entity, rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+
+    def blueprint(self, focus: str | None = None, reach: float = 20.0):
+        """One 3-D view of the world, side panels folded (the time panel stays).
+
+        Args:
+            focus: the boat the camera follows (orbiting it), or None: the world's origin.
+            reach: m, the camera's distance scale (the fleet's extent).
+        """
+        import rerun.blueprint as rrb
+
+        d = max(reach, 12.0)
+        self._focus = focus
+        eye = rrb.EyeControls3D(kind=rrb.Eye3DKind.Orbital, position=[-0.9 * d, -0.9 * d, 0.8 * d],
+                                look_target=[0.0, 0.0, 0.0], eye_up=[0.0, 0.0, 1.0])
+        # The view's frame is world/focus: the followed boat's position, without its rotation
+        # (the camera goes along, the sea does not tilt), or the world's origin.
+        return rrb.Blueprint(rrb.Spatial3DView(origin="/world/focus", contents="/world/**",
+                                               name="boatsim", eye_controls=eye),
+                             collapse_panels=True)
+
+    def _part(self, name: str) -> str:
+        return self._rr.escape_entity_path_part(name or "boat")
+
+    def _entity(self, name: str) -> str:
+        return f"world/{self._part(name)}"
+
+    def _at(self, t: float) -> None:
+        """Log what follows at simulation time ``t`` (s)."""
+        self.t = t
+        self._rr.set_time("sim_time", duration=t, recording=self._rec)
+
+    def _log(self, entity: str, archetype, static: bool = False) -> None:
+        """Every drawing goes through here (tests subclass it to see what is drawn)."""
+        self._rr.log(entity, archetype, static=static, recording=self._rec)
+
+    def _boat(self, name: str) -> HullShape:
+        """The boat's shape; its hull mesh is logged (static) the first time."""
+        shape = self._shapes.get(name) or self._shapes.setdefault(name, hull_shape(None))
+        if name not in self._boats:
+            colour = _HULL_COLOURS[len(self._boats) % len(_HULL_COLOURS)]
+            self._boats[name] = len(self._boats)
+            entity = self._entity(name)
+            self._log(f"{entity}/hull", self._rr.Mesh3D(
+                vertex_positions=shape.vertices, triangle_indices=shape.faces,
+                albedo_factor=[*colour, 255]), static=True)
+            top = float(shape.arrow_origin[2]) + 0.5
+            self._log(f"{entity}/name", self._rr.Points3D(
+                [[0.0, 0.0, top]], labels=[name or "(root namespace)"], radii=[0.01],
+                colors=[colour]), static=True)
+        return shape
+
+    def pose(self, t: float, name: str, position: Iterable[float],
+             orientation: Iterable[float]) -> None:
+        """A boat's pose: its hull reference point (m, world) and orientation (x, y, z, w)."""
+        self._boat(name)
+        p = np.asarray(list(position), dtype=float)
+        self._at(t)
+        self._log(self._entity(name), self._rr.Transform3D(
+            translation=p, quaternion=self._rr.Quaternion(xyzw=list(orientation))))
+        self._positions[name] = p
+        if name == self._focus:
+            self._log("world/focus", self._rr.Transform3D(translation=p))
+        if t >= self._next_path.get(name, -math.inf) - 1e-9:  # a point per _PATH_STEP
+            self._next_path[name] = (math.floor(t / _PATH_STEP + 1e-9) + 1) * _PATH_STEP
+            path = self._paths.setdefault(name, [])
+            path.append(p)
+            del path[:-_PATH_POINTS]
+        if t >= self._next_path_log:
+            self._next_path_log = t + _PATH_PERIOD
+            self._log_paths()
+
+    def _log_paths(self) -> None:
+        for name, path in self._paths.items():
+            if len(path) > 1:
+                colour = _HULL_COLOURS[self._boats[name] % len(_HULL_COLOURS)]
+                self._log(f"world/paths/{self._part(name)}", self._rr.LineStrips3D(
+                    [np.array(path)], colors=[colour], radii=[0.05]))
+
+    def wrench(self, t: float, name: str, source: str, force: Iterable[float]) -> None:
+        """A force on a boat (N, body frame), drawn from above its centre of mass."""
+        if source not in self.sources:
+            return
+        shape = self._boat(name)
+        f = np.asarray(list(force), dtype=float)
+        self._at(t)
+        self._log(f"{self._entity(name)}/forces/{source}", self._rr.Arrows3D(
+            origins=[shape.arrow_origin], vectors=[f * shape.force_scale],
+            colors=[_ARROW_COLOURS.get(source, (255, 255, 255))],
+            radii=[shape.arrow_radius]))
+
+    def sea(self, t: float, field: WaveField) -> None:
+        """The sea at ``t`` around the fleet, once ``sea_period`` has passed since the last."""
+        if t < self._next_sea - 1e-9:
+            return
+        self._next_sea = (math.floor(t / self._sea_period + 1e-9) + 1) * self._sea_period
+        positions = np.array(list(self._positions.values())).reshape(-1, 3)[:, :2]
+        if len(positions):
+            low, high = positions.min(axis=0), positions.max(axis=0)
+            centre, size = (low + high) / 2, max(self._sea_size, float(np.max(high - low)) + 20)
+        else:
+            centre, size = np.zeros(2), self._sea_size
+        vertices, triangles, colours = sea_mesh(field, t, centre, size, self._sea_resolution)
+        self._at(t)
+        self._log("world/sea", self._rr.Mesh3D(vertex_positions=vertices,
+                                               triangle_indices=triangles,
+                                               vertex_colors=colours))
+
+    def finish(self) -> None:
+        """Draw the paths as they are now (the end of a bag or of a live view)."""
+        self._log_paths()

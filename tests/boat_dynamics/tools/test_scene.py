@@ -1,0 +1,94 @@
+"""What `boatsim view` draws (boat_dynamics.tools.scene), read back from the drawing calls."""
+
+import sys
+
+import numpy as np
+import pytest
+
+from boat_dynamics.physics.scenario import default_scenario_path, load_scenario, parse_scenario
+from boat_dynamics.tools.scene import MAX_SEA_VERTICES, Scene, hull_shape, sea_mesh
+from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
+
+#: rerun-sdk (the view extra; make test installs it) needs Python 3.11.
+pytestmark = pytest.mark.skipif(sys.version_info < (3, 11), reason="rerun-sdk needs 3.11+")
+
+SEA = WaveField((WaveComponent(0.4, 20.0, 0.3, 0.5, 0.0), WaveComponent(0.1, 7.0, -0.8, 0.4, 1.0)))
+
+
+def _values(batch):
+    return np.array(batch.as_arrow_array().to_pylist(), dtype=float)
+
+
+class Drawn(Scene):
+    """A scene that keeps what it draws: (time, entity, archetype, static)."""
+
+    def __init__(self, *args, **kwargs):
+        import rerun as rr
+
+        self.drawn = []
+        super().__init__(rr.RecordingStream("boatsim_test"), *args, **kwargs)
+
+    def _log(self, entity, archetype, static=False):
+        self.drawn.append((None if static else self.t, entity, archetype, static))
+
+    def at(self, entity):
+        return [(t, a) for t, e, a, _ in self.drawn if e == entity]
+
+
+def test_the_sea_is_the_surface_on_world_fixed_points():
+    vertices, triangles, colours = sea_mesh(SEA, 3.2, np.array([10.3, -4.6]), 20.0, 0.5)
+    assert vertices.shape == (41 * 41, 3) and triangles.shape == (2 * 40 * 40, 3)
+    np.testing.assert_allclose(vertices[:, :2] / 0.5, np.round(vertices[:, :2] / 0.5), atol=1e-9)
+    expected = sample_surface(SEA, vertices[:, :2], 3.2).heights  # float64 reference
+    np.testing.assert_allclose(vertices[:, 2], expected, atol=2e-5)  # drawn in float32
+    assert colours.dtype == np.uint8 and len(np.unique(colours, axis=0)) > 50  # shaded
+    moved, _, _ = sea_mesh(SEA, 3.2, np.array([10.3 + 0.2, -4.6 - 0.1]), 20.0, 0.5)
+    np.testing.assert_array_equal(moved[:, :2], vertices[:, :2])  # it does not swim
+
+
+def test_a_wide_sea_keeps_to_the_vertex_budget_and_its_size():
+    vertices, _, _ = sea_mesh(SEA, 0.0, np.zeros(2), 2000.0, 1.0)
+    assert len(vertices) <= MAX_SEA_VERTICES
+    span = vertices[:, :2].max(axis=0) - vertices[:, :2].min(axis=0)
+    np.testing.assert_allclose(span, 2000.0, rtol=1e-9)
+
+
+def test_a_hull_is_its_buoyancy_mesh_and_an_arrow_a_hull_length_at_full_thrust():
+    spec = load_scenario(default_scenario_path()).boats[0]
+    shape = hull_shape(spec.params)
+    np.testing.assert_array_equal(shape.vertices, spec.params.buoyancy.mesh.vertices)
+    assert shape.force_scale * 2000.0 == pytest.approx(4.0)  # max_thrust 2 kN, 4 m long
+    assert shape.arrow_origin[2] > shape.vertices[:, 2].max()  # over the deck, visible
+    twin = parse_scenario({"boats": [{"propulsion": [
+        {"name": "l", "max_thrust": 300.0, "position": [-1, 0.5, 0]},
+        {"name": "r", "max_thrust": 300.0, "position": [-1, -0.5, 0]}]}]}).boats[0]
+    assert hull_shape(twin.params).force_scale * 600.0 == pytest.approx(4.0)  # both together
+    assert hull_shape(None).vertices.shape[1] == 3  # a boat no scenario has: the default box
+
+
+def test_poses_forces_paths_and_sea_are_drawn_in_their_frames_at_their_times():
+    spec = load_scenario(default_scenario_path()).boats[0]
+    scene = Drawn({"": hull_shape(spec.params)}, sources=("thrust",), sea_period=0.5)
+    scene.blueprint(focus="")
+    for k in range(160):  # 3.2 s at 50 Hz, moving east
+        t = k * 0.02
+        scene.pose(t, "", (0.5 * t, 0.0, 0.1), (0.0, 0.0, 0.0, 1.0))
+        scene.sea(t, SEA)
+        scene.wrench(t, "", "thrust", (1500.0, 0.0, 0.0))
+        scene.wrench(t, "", "buoyancy", (0.0, 0.0, 4e4))  # not asked for: not drawn
+    poses = scene.at("world/boat")
+    assert len(poses) == 160 and poses[-1][0] == pytest.approx(3.18)
+    np.testing.assert_allclose(_values(poses[-1][1].translation), [[1.59, 0.0, 0.1]])
+    np.testing.assert_allclose(_values(poses[-1][1].quaternion), [[0.0, 0.0, 0.0, 1.0]])
+    focus = scene.at("world/focus")  # the camera's frame follows the boat (no rotation)
+    np.testing.assert_allclose(_values(focus[-1][1].translation), [[1.59, 0.0, 0.1]])
+    (_, hull), = scene.at("world/boat/hull")
+    assert len(_values(hull.vertex_positions)) == len(spec.params.buoyancy.mesh.vertices)
+    arrows = scene.at("world/boat/forces/thrust")
+    np.testing.assert_allclose(_values(arrows[-1][1].vectors), [[3.0, 0.0, 0.0]])  # 1.5 kN
+    assert scene.at("world/boat/forces/buoyancy") == []
+    seas = scene.at("world/sea")
+    assert [t for t, _ in seas] == pytest.approx([0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0])
+    scene.finish()
+    path = _values(scene.at("world/paths/boat")[-1][1].strips)[0]
+    np.testing.assert_allclose(path[:, 0], 0.5 * 0.2 * np.arange(len(path)), atol=1e-6)

@@ -1,0 +1,134 @@
+"""`boatsim view`: a bag and a running simulation drawn by Rerun, and the page in a browser.
+
+The browser test opens the served page in headless Chromium (Debian's chromium and
+chromium-driver, which `make test` installs) through Selenium, with SwiftShader's software
+WebGL, and looks at the screenshot's pixels: the sea's blues and the hulls' colours.
+"""
+
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from support import cli_run
+
+MULTI = "scenarios/multi_boat.yaml"
+#: rerun-sdk (the view extra; make test installs it) needs Python 3.11.
+pytestmark = pytest.mark.skipif(sys.version_info < (3, 11), reason="rerun-sdk needs 3.11+")
+
+
+def _entities(rrd):
+    """The entity paths of a .rrd file, from `rerun rrd stats`."""
+    rerun = shutil.which("rerun", path=str(Path(sys.executable).parent))
+    out = subprocess.run([rerun, "rrd", "stats", str(rrd)], capture_output=True, text=True,
+                         timeout=60)
+    assert out.returncode == 0, out.stderr
+    section = out.stdout.split("Num chunks per entity")[1].split("Num chunks per index")[0]
+    return {line.split(":")[0].strip() for line in section.splitlines() if line.startswith("/")}
+
+
+@pytest.fixture(scope="module")
+def bag(tmp_path_factory):
+    path = tmp_path_factory.mktemp("view") / "bag"
+    out = cli_run("run", MULTI, "--fast", "--duration", "5", "--record", str(path))
+    assert out.returncode == 0, out.stderr
+    return path
+
+
+def test_a_bag_is_drawn_boat_by_boat_on_its_sea(bag, tmp_path):
+    out = cli_run("view", str(bag), "--scenario", MULTI, "--save", str(tmp_path / "v.rrd"))
+    assert out.returncode == 0, out.stderr
+    assert "of 3 boat(s)" in out.stderr
+    drawn = _entities(tmp_path / "v.rrd")
+    for boat in ("alpha", "bravo", "charlie"):
+        assert {f"/world/{boat}", f"/world/{boat}/hull", f"/world/{boat}/name",
+                f"/world/{boat}/forces/thrust", f"/world/paths/{boat}"} <= drawn, drawn
+    assert {"/world/sea", "/world/focus"} <= drawn
+
+
+def test_the_live_view_draws_the_running_simulation(boatsim, probe, tmp_path):
+    from nav_msgs.msg import Odometry
+
+    sim = boatsim("run")  # the default scenario, real time
+    seen = []
+    probe.node.create_subscription(Odometry, "/odom", seen.append, 10)
+    probe.spin_until(lambda: seen, 60.0, "/odom")
+    out = cli_run("view", "--save", str(tmp_path / "live.rrd"), "--duration", "2", timeout=90)
+    assert out.returncode == 0, out.stderr
+    assert "showing boat (root namespace)" in out.stderr
+    drawn = _entities(tmp_path / "live.rrd")
+    assert {"/world/boat", "/world/boat/hull", "/world/sea", "/world/focus"} <= drawn, drawn
+    assert sim.stop() == 0
+
+
+def test_a_bag_that_is_not_there_or_has_no_boats_exits_2(tmp_path):
+    out = cli_run("view", str(tmp_path / "nothing"), "--save", str(tmp_path / "v.rrd"))
+    assert out.returncode == 2 and "boatsim view: error:" in out.stderr
+    assert "Traceback" not in out.stderr
+
+
+def _free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _shares(png):
+    """(share of sea-blue pixels, count of hull-orange ones) in the 3-D view of a screenshot."""
+    from PIL import Image
+
+    a = np.asarray(Image.open(png).convert("RGB")).astype(int)[45:-40]  # no title, time bar
+    r, g, b = a[..., 0], a[..., 1], a[..., 2]
+    sea = (b > r + 40) & (b > g + 10) & (b > 90)
+    orange = (r > 200) & (g > 80) & (g < 160) & (b < 90)  # alpha's hull, (232, 118, 36)
+    return float(sea.mean()), int(orange.sum())
+
+
+def _browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    for program in ("/usr/bin/chromium", "/usr/bin/chromedriver"):
+        assert shutil.which(program), (f"{program} is missing: `make test` installs Debian's "
+                                       "chromium and chromium-driver")
+    options = webdriver.ChromeOptions()
+    options.binary_location = "/usr/bin/chromium"
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                 "--no-first-run", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync", "--disable-dev-shm-usage",
+                 "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+                 "--window-size=1280,800", "--user-data-dir=/tmp/boatsim-test-chromium"):
+        options.add_argument(flag)
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+
+
+def test_the_page_shows_the_boats_on_the_sea_in_a_headless_browser(bag, boatsim, tmp_path):
+    web, grpc = _free_port(), _free_port()
+    view = boatsim("view", str(bag), "--scenario", MULTI, "--web-port", str(web),
+                   "--grpc-port", str(grpc), name="view")
+    deadline = time.monotonic() + 60
+    while "open http" not in view.output() or "boat(s) from" not in view.output():
+        assert view.proc.poll() is None and time.monotonic() < deadline, view.output()
+        time.sleep(0.2)
+    url = view.output().split("open ")[1].split()[0]
+    driver = _browser()
+    shot = tmp_path / "view.png"
+    try:
+        driver.get(url)
+        deadline = time.monotonic() + 120  # the viewer's wasm compiles in software
+        while True:
+            driver.save_screenshot(str(shot))
+            sea, hull = _shares(shot)
+            if (sea > 0.1 and hull > 30) or time.monotonic() > deadline:
+                break
+            time.sleep(2.0)
+    finally:
+        driver.quit()
+    print(f"screenshot: {shot} (sea {sea:.0%} of the view, {hull} hull pixels)")
+    assert sea > 0.1, f"the sea covers {sea:.1%} of the view ({shot})"
+    assert hull > 30, f"{hull} pixels of alpha's orange hull ({shot})"
+    assert view.stop() == 0
