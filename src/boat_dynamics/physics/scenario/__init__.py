@@ -20,7 +20,7 @@ from typing import Any
 import yaml
 
 from boat_dynamics.physics.scenario.boat import DEFAULT_CRITICAL_RATIO, boat_block
-from boat_dynamics.physics.scenario.read import mapping, only
+from boat_dynamics.physics.scenario.read import describe, mapping, only
 from boat_dynamics.physics.scenario.sea import environment_block, ocean_block, simulation_block
 from boat_dynamics.physics.scenario.specs import (
     BoatSpec,
@@ -135,6 +135,8 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     sim = simulation_block(d.get("simulation"))
     sea = ocean_block(d.get("ocean"), sim)
     environment = environment_block(d.get("environment"), sim.seed)
+    describe("boats", None, "a non-empty list of boats", default_doc="one default boat (a "
+             "4 m x 2 m x 1 m box), with a warning")
     boats_raw = d.get("boats")
     defaulted = boats_raw is None
     if defaulted:

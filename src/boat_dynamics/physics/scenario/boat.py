@@ -38,7 +38,16 @@ from boat_dynamics.physics.scenario.models import (
     propulsion_block,
     rudder_block,
 )
-from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
+from boat_dynamics.physics.scenario.read import (
+    choice,
+    describe,
+    flag,
+    integer,
+    mapping,
+    number,
+    only,
+    vector,
+)
 from boat_dynamics.physics.scenario.sensors import sensors_block
 from boat_dynamics.physics.scenario.specs import BoatSpec, ScenarioError, SimulationSettings
 from boat_dynamics.physics.wind import DEFAULT_WIND_COEFFICIENTS, Windage
@@ -158,9 +167,13 @@ def _windage(d: Mapping[str, Any], key: str) -> Windage:
     :data:`~boat_dynamics.physics.wind.DEFAULT_WIND_COEFFICIENTS`.
     """
     only(d, key, ("frontal_area", "lateral_area", "coefficients"))
+    for k in ("frontal_area", "lateral_area"):
+        describe(f"{key}.{k}", None, "number in [0, 1e+06] m^2, above the waterline",
+                 default_doc="auto: from the hull above its waterline")
     areas = [number(d, k, key, math.nan, 0.0, 1e6, unit="m^2") if k in d else math.nan
              for k in ("frontal_area", "lateral_area")]
-    coefficients = vector(d, "coefficients", key, 3, list(DEFAULT_WIND_COEFFICIENTS), low=0.0)
+    coefficients = vector(d, "coefficients", key, 3, list(DEFAULT_WIND_COEFFICIENTS), low=0.0,
+                          unit="Fossen's c_x, c_y, c_n, each at most 2")
     if np.any(coefficients > 2.0):
         raise ScenarioError(f"{key}.coefficients", d.get("coefficients"),
                             "c_x, c_y, c_n each in [0, 2] (Fossen: about 0.5-0.9, 0.7-0.95, "
@@ -170,6 +183,9 @@ def _windage(d: Mapping[str, Any], key: str) -> Windage:
 
 def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
     """``name``: a ROS name, required unless the boat is alone ("" = root namespace)."""
+    describe(f"{key}.name", None, "a ROS name: letters, digits and _, not starting with a "
+             "digit; unique", default_doc='"" (the root namespace) for a lone boat, else '
+             "required")
     name = d.get("name", "" if lone else None)
     if name is None:
         raise ScenarioError(f"{key}.name", None, "every boat of a multi-boat scenario needs a name")
@@ -198,16 +214,14 @@ def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, Hull
             beam=number(hd, "beam", hk, 2.0, MIN_HULL_SIZE, 1000.0, unit="m"),
             height=number(hd, "height", hk, 1.0, MIN_HULL_SIZE, 1000.0, unit="m"),
         )
-        subdivisions = hd.get("subdivisions", 1)
-        if (isinstance(subdivisions, bool) or not isinstance(subdivisions, int)
-                or not 1 <= subdivisions <= 64):
-            raise ScenarioError(f"{hk}.subdivisions", subdivisions,
-                                "must be an integer in [1, 64] (quads per box face edge)")
+        subdivisions = integer(hd, "subdivisions", hk, 1, 1, 64, "(quads per box face edge)")
         return hull, box_mesh(hull, subdivisions)
     for extra in ("length", "beam", "height", "subdivisions"):
         if extra in hd:
             raise ScenarioError(f"{hk}.{extra}", hd[extra],
                                 "only for hull type box (a mesh has its own size)")
+    describe(f"{hk}.path", None, "an STL or OBJ file (relative: to the scenario's folder)",
+             default_doc="required with type mesh")
     path = hd.get("path")
     if not isinstance(path, str) or not path:
         raise ScenarioError(f"{hk}.path", path, "must be the path of an STL or OBJ file")
@@ -246,18 +260,26 @@ def _mass_properties(d: Mapping[str, Any], key: str, sim: SimulationSettings, me
     if "mass" in d and "density" in d:
         raise ScenarioError(f"{key}.density", d["density"],
                             "give either mass or density, not both (the other is derived)")
+    describe(f"{key}.density", None, "number in (0, inf] kg/m^3: mass = density x the hull's "
+             "volume (instead of mass)", default_doc="none")
     if "density" in d:
         density = number(d, "density", key, 0.0, 0.0, math.inf, low_open=True, unit="kg/m^3")
         mass = density * volume
     else:
         mass = number(d, "mass", key, 0.5 * sim.water_density * volume, 0.0, math.inf,
-                       low_open=True, unit="kg")
-    com = vector(d, "center_of_mass", key, 3, [0.0, 0.0, 0.0])
+                       low_open=True, unit="kg", default_doc="half the hull's displacement "
+                       "(0.5 x water_density x volume: it floats at half its height)")
+    com = vector(d, "center_of_mass", key, 3, [0.0, 0.0, 0.0], unit="m, body frame, from the "
+                 f"hull reference point, within {COM_REACH:g} hull sizes")
     reach = COM_REACH * float(np.max(mesh.extents))
     if np.any(np.abs(com) > reach):
         raise ScenarioError(f"{key}.center_of_mass", d.get("center_of_mass"),
                             f"must lie within {COM_REACH:g} hull sizes ({reach:.4g} m) of the "
                             "hull's reference point in each axis (m)")
+    describe(f"{key}.inertia", None, "3 numbers > 0, kg m^2: the principal moments about the "
+             "centre of mass", default_doc="null: the solid hull's")
+    describe(f"{key}.inertia_products", None, "3 numbers (Ixy, Ixz, Iyz), kg m^2",
+             default_doc="the solid hull's; [0, 0, 0] when inertia is given")
     inertia_raw = d.get("inertia")
     inertia = (mesh.solid_inertia(mass) if inertia_raw is None
                else vector(d, "inertia", key, 3, [1.0, 1.0, 1.0], low=0.0))
@@ -284,9 +306,15 @@ def _damping(dd: Mapping[str, Any], dk: str
     ``linear`` is not given.
     """
     only(dd, dk, ("linear", "quadratic", "critical_ratio", "decay", "water_velocity"))
-    linear = vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0)
+    linear = vector(dd, "linear", dk, 6, [0.0] * 6, low=0.0,
+                    unit="N s/m (surge, sway, heave), N m s (roll, pitch, yaw)")
     decay = vector(dd, "decay", dk, 6, [0.0] * 6, low=0.0)
-    quadratic = vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0)
+    quadratic = vector(dd, "quadratic", dk, 6, [0.0] * 6, low=0.0,
+                       unit="N s^2/m^2, N m s^2", default_doc="derived: the hull's form drag "
+                       "at its equilibrium draft")
+    describe(f"{dk}.critical_ratio", None, "3 numbers >= 0: damping ratios in heave, roll, "
+             "pitch added to linear", default_doc=f"{list(DEFAULT_CRITICAL_RATIO)} unless "
+             "linear is given (or potential-flow coefficients damp the boat)")
     ratio_default = None if "linear" in dd else list(DEFAULT_CRITICAL_RATIO)
     ratio_raw = dd.get("critical_ratio", ratio_default)
     ratio = (None if ratio_raw is None
@@ -313,6 +341,9 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
     """
     d = mapping(raw, key)
     only(d, key, ("coefficients", "radiation"))
+    describe(f"{key}.coefficients", None, "a .npz coefficient file (boatsim hydro; relative: "
+             "to the scenario's folder), or auto: the shipped or hydro/ file of this hull",
+             default_doc="none: no potential-flow coefficients")
     if "coefficients" not in d:
         if "radiation" in d:
             raise ScenarioError(f"{key}.radiation", d["radiation"],
@@ -353,7 +384,8 @@ def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
 
     At rest: :func:`boat_dynamics.physics.pipeline.init` sets it afloat in the waves.
     """
-    position = vector(idd, "position", ik, 3, [0.0, 0.0, 0.0])
+    position = vector(idd, "position", ik, 3, [0.0, 0.0, 0.0],
+                      unit=f"m, world frame, each within +-{MAX_POSITION:g}")
     if np.any(np.abs(position) > MAX_POSITION):
         raise ScenarioError(f"{ik}.position", idd.get("position"),
                             f"each coordinate must lie within +-{MAX_POSITION:g} m (the world "
@@ -368,6 +400,8 @@ def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
 
 
 def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
+    describe(key, None, "a list of {t, thrust, rudder}, held from each t to the next; the "
+             "boat then ignores its command topics", default_doc="none: the command topics")
     if raw is None:
         return None
     if not isinstance(raw, list) or not raw:
@@ -383,5 +417,6 @@ def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:
                                 f"must be later than the previous entry ({times[-1]})")
         times.append(t)
         throttles.append(number(ed, "thrust", ek, 0.0, -1.0, 1.0))
-        rudders.append(number(ed, "rudder", ek, 0.0, -max_rudder, max_rudder, unit="rad"))
+        rudders.append(number(ed, "rudder", ek, 0.0, -max_rudder, max_rudder, unit="rad",
+                              range_doc="[-rudder.max_angle_deg, +rudder.max_angle_deg], rad"))
     return CommandScript(tuple(times), tuple(throttles), tuple(rudders))

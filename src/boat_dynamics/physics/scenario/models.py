@@ -16,7 +16,16 @@ from boat_dynamics.physics.hull_drag import HullDrag
 from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
 from boat_dynamics.physics.propulsion import MAX_THRUSTERS, Propulsion
 from boat_dynamics.physics.rudder import RUDDER_MODELS, Rudder
-from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only, vector
+from boat_dynamics.physics.scenario.read import (
+    choice,
+    describe,
+    flag,
+    integer,
+    mapping,
+    number,
+    only,
+    vector,
+)
 from boat_dynamics.physics.scenario.specs import ScenarioError
 from boat_dynamics.physics.slamming import SLAMMING_MODELS, Slamming
 
@@ -49,11 +58,7 @@ def _mesh_buoyancy(bd: Mapping[str, Any], bk: str, mesh: HullMesh) -> MeshBuoyan
     for extra in ("panels_per_wavelength", "max_triangles"):
         if extra in bd and pressure != "froude_krylov":
             raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for pressure froude_krylov")
-    max_triangles = bd.get("max_triangles", 4096)
-    if (isinstance(max_triangles, bool) or not isinstance(max_triangles, int)
-            or not 12 <= max_triangles <= 1_000_000):
-        raise ScenarioError(f"{bk}.max_triangles", max_triangles,
-                            "must be an integer in [12, 1000000]")
+    max_triangles = integer(bd, "max_triangles", bk, 4096, 12, 1_000_000)
     return MeshBuoyancy(
         mesh, _hull_drag(bd.get("drag"), f"{bk}.drag"), pressure=pressure,
         panels_per_wavelength=number(bd, "panels_per_wavelength", bk, 10.0, 1.0, 100.0),
@@ -96,6 +101,8 @@ def propulsion_block(raw: Any, pk: str, hull: BoxHull
     for i, item in enumerate(raw):
         k = f"{pk}[{i}]"
         d = mapping(item, k)
+        describe(f"{k}.name", None, "a ROS name (a letter, then letters, digits or _); "
+                 "unique on the boat", default_doc="required")
         name = d.get("name")
         if (not isinstance(name, str) or not name or not name[0].isalpha()
                 or not name.replace("_", "a").isalnum()):
@@ -110,6 +117,8 @@ def propulsion_block(raw: Any, pk: str, hull: BoxHull
             raise ScenarioError(f"{k}.max_angle_deg", d["max_angle_deg"],
                                 "only for a steerable thruster (steerable: true)")
         max_angle = number(d, "max_angle_deg", k, 35.0, 0.0, 180.0, low_open=True, unit="deg")
+        only(d, k, ("name", "max_angle_deg", "max_thrust", "position", "direction",
+                    "steerable", "at_center_of_mass", "time_constant"))
         models.append(replace(model, max_angle=math.radians(max_angle)))
     return tuple(models), tuple(names)
 
@@ -124,7 +133,9 @@ def _thruster(pd: Mapping[str, Any], pk: str, hull: BoxHull) -> Propulsion:
         raise ScenarioError(f"{pk}.direction", pd.get("direction"), "must be a non-zero vector")
     return Propulsion(
         max_thrust=number(pd, "max_thrust", pk, 2000.0, 0.0, 1e8, low_open=True, unit="N"),
-        position=vector(pd, "position", pk, 3, [-hull.length / 2, 0.0, -hull.height / 4]),
+        position=vector(pd, "position", pk, 3, [-hull.length / 2, 0.0, -hull.height / 4],
+                        default_doc="[-length/2, 0, -height/4]: the transom",
+                        unit="m, body frame"),
         direction=direction / norm,
         steerable=flag(pd, "steerable", pk, False),
         at_center_of_mass=flag(pd, "at_center_of_mass", pk, False),
@@ -151,7 +162,9 @@ def rudder_block(rd: Mapping[str, Any], rk: str, hull: BoxHull) -> Rudder:
                                        unit="deg")),
         area=number(rd, "area", rk, 0.25, 0.0, 1e4, low_open=True, unit="m^2"),
         lift_coefficient=number(rd, "lift_coefficient", rk, 1.0, 0.0, 10.0, low_open=True),
-        position=vector(rd, "position", rk, 3, [-hull.length / 2, 0.0, -hull.height / 2]),
+        position=vector(rd, "position", rk, 3, [-hull.length / 2, 0.0, -hull.height / 2],
+                        default_doc="[-length/2, 0, -height/2]: the transom's bottom",
+                        unit="m, body frame"),
         max_torque=number(rd, "max_torque", rk, 0.0, 0.0, 1e9, unit="N m"),
         base_torque=number(rd, "base_torque", rk, 0.0, 0.0, 1e9, unit="N m"),
         max_speed=number(rd, "max_speed", rk, 1.0, 0.0, 1e3, low_open=True, unit="m/s"),
@@ -195,6 +208,12 @@ def _sample_points(bd: Mapping[str, Any], bk: str, hull: BoxHull,
     layout = choice(bd, "layout", bk, "grid", ("grid", "boat", "custom"))
     if layout != "grid" and "grid" in bd:
         raise ScenarioError(f"{bk}.grid", bd["grid"], "only for layout grid")
+    describe(f"{bk}.grid", [5, 3], "[nx, ny], integers in [1, 100]: points under the hull's "
+             "bottom (layout grid)")
+    describe(f"{bk}.points", None, "a list of [x, y, z] body points, m (layout custom)",
+             default_doc="required with layout custom")
+    describe(f"{bk}.force_clamp", None, "number in (0, 100]: a point's force at most this "
+             "many times its share of the weight", default_doc="none")
     if layout == "grid":
         grid = bd.get("grid", [5, 3])
         if (not isinstance(grid, list) or len(grid) != 2
@@ -222,7 +241,9 @@ def _sample_points(bd: Mapping[str, Any], bk: str, hull: BoxHull,
     depth = hull.height
     if curve == "sphere":  # default: spheres that together have the hull's volume
         depth = (6.0 * volume / (math.pi * points.shape[0])) ** (1.0 / 3.0)
-    max_depth = number(bd, "max_depth", bk, depth, 0.0, 1000.0, low_open=True, unit="m")
+    max_depth = number(bd, "max_depth", bk, depth, 0.0, 1000.0, low_open=True, unit="m",
+                       default_doc="the hull's height (curve sphere: the diameter of spheres "
+                       "that together have the hull's volume)")
     if curve == "sphere":
         volume = points.shape[0] * math.pi * max_depth**3 / 6.0
     return SamplePointBuoyancy(

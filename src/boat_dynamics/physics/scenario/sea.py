@@ -5,7 +5,15 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from boat_dynamics.physics.scenario.read import choice, flag, mapping, number, only
+from boat_dynamics.physics.scenario.read import (
+    choice,
+    describe,
+    flag,
+    integer,
+    mapping,
+    number,
+    only,
+)
 from boat_dynamics.physics.scenario.sensors import datum_block
 from boat_dynamics.physics.scenario.specs import (
     WRENCH_TOPICS,
@@ -31,20 +39,17 @@ def simulation_block(raw: Any) -> SimulationSettings:
                    "seed", "gravity", "water_density", "cmd_timeout", "substeps",
                    "wave_precision", "datum", "publish_tf", "wrench_topics", "fleet_state"))
     rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
-    pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz")
-    diag = number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz")
-    realtime = d.get("realtime", True)
-    if not isinstance(realtime, bool):
-        raise ScenarioError(f"{key}.realtime", realtime, "must be true or false")
+    pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz",
+                 range_doc="(0, rate_hz] Hz")
+    diag = number(d, "diagnostics_rate_hz", key, 10.0, 0.0, rate, low_open=True, unit="Hz",
+                  range_doc="(0, rate_hz] Hz")
+    realtime = flag(d, "realtime", key, True)
+    describe(f"{key}.duration", None, "number in (0, inf] s, or null: until stopped")
     duration = d.get("duration")
     if duration is not None:
         duration = number(d, "duration", key, 0.0, 0.0, math.inf, low_open=True, unit="s")
-    substeps = d.get("substeps", 1)
-    if isinstance(substeps, bool) or not isinstance(substeps, int) or not 1 <= substeps <= 100:
-        raise ScenarioError(f"{key}.substeps", substeps, "must be an integer in [1, 100]")
-    seed = d.get("seed", 0)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ScenarioError(f"{key}.seed", seed, "must be an integer >= 0")
+    substeps = integer(d, "substeps", key, 1, 1, 100)
+    seed = integer(d, "seed", key, 0, 0)
     return SimulationSettings(
         rate_hz=rate,
         publish_rate_hz=pub,
@@ -78,10 +83,7 @@ def environment_block(raw: Any, seed: int) -> Environment:
     c, w = mapping(d.get("current"), ck), mapping(d.get("wind"), wk)
     only(c, ck, ("speed", "direction_deg"))
     only(w, wk, ("speed", "direction_deg", "gusts", "components"))
-    components = w.get("components", 50)
-    if isinstance(components, bool) or not isinstance(components, int) \
-            or not 1 <= components <= 1000:
-        raise ScenarioError(f"{wk}.components", components, "must be an integer in [1, 1000]")
+    components = integer(w, "components", wk, 50, 1, 1000)
     wind = Wind.make(number(w, "speed", wk, 0.0, 0.0, 100.0, unit="m/s"),
                      math.radians(number(w, "direction_deg", wk, 0.0, -360.0, 360.0,
                                          unit="deg")),
@@ -99,6 +101,8 @@ def ocean_block(raw: Any, sim: SimulationSettings) -> WaveField:
     depth = number(d, "depth", key, math.inf, 0.0, math.inf, low_open=True, unit="m",
                     allow_inf=True)
     generated = _spectrum(d.get("spectrum"), sim, depth)
+    describe(f"{key}.components", None, "a list of {amplitude, wavelength, direction_deg, "
+             "steepness, phase}", default_doc="none")
     comps_raw = d.get("components") or []
     if not isinstance(comps_raw, list):
         raise ScenarioError(f"{key}.components", comps_raw, "must be a list of components")
@@ -135,12 +139,15 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
     d = mapping(raw, key)
     only(d, key, _SPECTRUM_KEYS)
     kind = choice(d, "type", key, "jonswap", SPECTRUM_TYPES)
+    describe(f"{key}.spreading", 10.0, "number in [0, 1000] (s of cos-2s: larger is "
+             "narrower), or null: every component in direction_deg")
     spreading = d.get("spreading", 10.0)
     if spreading is not None:
         spreading = number(d, "spreading", key, 10.0, 0.0, 1000.0)
-    n = d.get("components", 16)
-    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 1000:
-        raise ScenarioError(f"{key}.components", n, "must be an integer in [1, 1000]")
+    n = integer(d, "components", key, 16, 1, 1000)
+    describe(f"{key}.beaufort", None, "integer in [0, 12]: a fully developed "
+             "pierson_moskowitz sea of that force (instead of significant_height and "
+             "peak_period)", default_doc="none")
     direction = math.radians(number(d, "direction_deg", key, 0.0, -360.0, 360.0, unit="deg"))
     steepness = number(d, "steepness", key, 0.5, 0.0, 1.0)
     try:

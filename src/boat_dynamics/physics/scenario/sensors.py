@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from boat_dynamics.physics.scenario.read import mapping, number, only, vector
+from boat_dynamics.physics.scenario.read import describe, mapping, number, only, vector
 from boat_dynamics.physics.scenario.specs import ScenarioError
 from boat_dynamics.physics.sensors import (
     Datum,
@@ -59,6 +59,10 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
         k = f"{key}[{i}]"
         d = mapping(item, k)
         only(d, k, ("type", "name", "rate_hz", "position", "noise"))
+        describe(f"{k}.type", None, f"one of: {', '.join(SENSOR_TYPES)}",
+                 default_doc="required")
+        describe(f"{k}.name", None, "a ROS name (a letter, then letters, digits or _); unique "
+                 "on the boat: its topics and frame", default_doc="its type")
         kind = d.get("type")
         if kind not in SENSOR_TYPES:
             raise ScenarioError(f"{k}.type", kind, f"must be one of: {', '.join(SENSOR_TYPES)}")
@@ -70,8 +74,16 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
         if name in {s.name for s in out}:
             raise ScenarioError(f"{k}.name", name, "must be unique among the boat's sensors")
         rate = number(d, "rate_hz", k, {"imu": 100.0, "gnss": 5.0, "odometry": 50.0}[kind], 0.0,
-                      physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)")
-        position = vector(d, "position", k, 3, [0.0, 0.0, 0.0])
+                      physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)",
+                      default_doc="imu 100, gnss 5, odometry 50",
+                      range_doc="(0, simulation.rate_hz] Hz")
+        position = vector(d, "position", k, 3, [0.0, 0.0, 0.0], unit="m, body frame, from the "
+                          "hull reference point (not for an odometry)")
+        describe(f"{k}.noise", None, "imu: gyroscope {...}, accelerometer {...}, "
+                 "orientation_sigma_deg; gnss: horizontal_sigma, vertical_sigma, bias_sigma, "
+                 "bias_correlation_time, velocity_sigma; odometry: position_sigma, "
+                 "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg",
+                 default_doc="each key's default below")
         noise = mapping(d.get("noise"), f"{k}.noise")
         if kind == "imu":
             out.append(_imu(name, rate, position, noise, f"{k}.noise"))
