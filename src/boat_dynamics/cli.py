@@ -309,15 +309,10 @@ def _view(args: argparse.Namespace) -> int:
     import signal
     import threading
 
-    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
     from boat_dynamics.tools.bags import BagError
     from boat_dynamics.tools.view import ViewError, ViewOptions, view_bag, view_live
 
-    path = args.scenario or default_scenario_path()
-    try:
-        scenario = load_scenario(path)
-    except ScenarioError as exc:
-        print(f"boatsim view: error: invalid scenario {path}: {exc}", file=sys.stderr)
+    if (scenario := _read_scenario(args.scenario, "boatsim view")) is None:
         return 2
     if args.save:
         Path(args.save).parent.mkdir(parents=True, exist_ok=True)
@@ -548,20 +543,29 @@ def _query(args: argparse.Namespace) -> int:
     return 0
 
 
+def _read_scenario(path: str | None, who: str):
+    """The scenario at ``path`` (None: the default one), or None once the error is printed."""
+    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+
+    path = path or default_scenario_path()
+    try:
+        return load_scenario(path)
+    except ScenarioError as exc:
+        print(f"{who}: error: invalid scenario {path}: {exc}", file=sys.stderr)
+        return None
+
+
 def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
     from boat_dynamics.physics.pipeline import InitError, start
-    from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
+    from boat_dynamics.physics.scenario import default_scenario_path
     from boat_dynamics.physics.snapshot import SnapshotError
     from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
 
     path = args.scenario or default_scenario_path()
-    try:
-        scenario = load_scenario(path)
-    except ScenarioError as exc:
-        print(f"boatsim: error: invalid scenario {path}: {exc}", file=sys.stderr)
+    if (scenario := _read_scenario(path, "boatsim")) is None:
         return 2
     if args.verb != "_node":  # the parent says it once
         for note in scenario.notes:
