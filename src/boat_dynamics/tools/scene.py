@@ -25,7 +25,7 @@ from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatParams
 from ocean_sim.physics.waves import WaveField, sample_surface
 
-__all__ = ["DEFAULT_SOURCES", "HullShape", "Scene", "hull_shape", "sea_mesh"]
+__all__ = ["DEFAULT_SOURCES", "POSE_PERIOD", "HullShape", "Scene", "hull_shape", "sea_mesh"]
 
 #: Wrench sources drawn unless asked otherwise: the ones of the size of the thrust
 #: (buoyancy and the total are of the size of the boat's weight, 20x longer; the damping
@@ -33,6 +33,9 @@ __all__ = ["DEFAULT_SOURCES", "HullShape", "Scene", "hull_shape", "sea_mesh"]
 DEFAULT_SOURCES = ("thrust", "rudder", "drag", "wind")
 #: The most sea-mesh vertices drawn at a time (a wide fleet gets a coarser grid).
 MAX_SEA_VERTICES = 40_000
+#: A boat's pose is drawn at most this often, s of simulation time (odom comes at 50 Hz; a
+#: browser's viewer drawing in software fell tens of seconds behind a live run at that rate).
+POSE_PERIOD = 0.05
 #: The path of each boat: a point every this many s of simulation time ...
 _PATH_STEP = 0.2
 #: ... the most points kept, and the period of its redraw, s of simulation time.
@@ -156,6 +159,8 @@ class Scene:
         self._positions: dict[str, np.ndarray] = {}  # the latest, (3,) m
         self._paths: dict[str, list[np.ndarray]] = {}
         self._next_path: dict[str, float] = {}
+        self._next_pose: dict[str, float] = {}
+        self._sea_triangles = 0  # the triangle count of the sea's indices last drawn
         self._next_path_log = -math.inf
         self._focus: str | None = None  # the boat the camera follows (blueprint)
         self.t = 0.0  # the simulation time of what is being drawn, s
@@ -214,13 +219,19 @@ class Scene:
 
     def pose(self, t: float, name: str, position: Iterable[float],
              orientation: Iterable[float]) -> None:
-        """A boat's pose: its hull reference point (m, world) and orientation (x, y, z, w)."""
+        """A boat's pose: its hull reference point (m, world) and orientation (x, y, z, w).
+
+        Drawn at most every :data:`POSE_PERIOD` s of simulation time (on a grid of it).
+        """
         self._boat(name)
         p = np.asarray(list(position), dtype=float)
+        self._positions[name] = p
+        if t < self._next_pose.get(name, -math.inf) - 1e-9:
+            return
+        self._next_pose[name] = (math.floor(t / POSE_PERIOD + 1e-9) + 1) * POSE_PERIOD
         self._at(t)
         self._log(self._entity(name), self._rr.Transform3D(
             translation=p, quaternion=self._rr.Quaternion(xyzw=list(orientation))))
-        self._positions[name] = p
         if name == self._focus:
             self._log("world/focus", self._rr.Transform3D(translation=p))
         if t >= self._next_path.get(name, -math.inf) - 1e-9:  # a point per _PATH_STEP
@@ -264,9 +275,11 @@ class Scene:
             centre, size = np.zeros(2), self._sea_size
         vertices, triangles, colours = sea_mesh(field, t, centre, size, self._sea_resolution)
         self._at(t)
-        self._log("world/sea", self._rr.Mesh3D(vertex_positions=vertices,
-                                               triangle_indices=triangles,
-                                               vertex_colors=colours))
+        if len(triangles) != self._sea_triangles:  # the grid's shape changed (or the first)
+            self._sea_triangles = len(triangles)
+            self._log("world/sea", self._rr.Mesh3D.from_fields(triangle_indices=triangles))
+        self._log("world/sea", self._rr.Mesh3D.from_fields(vertex_positions=vertices,
+                                                           vertex_colors=colours))
 
     def finish(self) -> None:
         """Draw the paths as they are now (the end of a bag or of a live view)."""
