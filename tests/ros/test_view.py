@@ -71,6 +71,16 @@ def test_a_bag_that_is_not_there_or_has_no_boats_exits_2(tmp_path):
     assert "Traceback" not in out.stderr
 
 
+def test_a_port_in_use_exits_2_naming_it(tmp_path):
+    with socket.socket() as taken:
+        taken.bind(("0.0.0.0", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        out = cli_run("view", "--grpc-port", str(port), timeout=60)
+    assert out.returncode == 2, out.stderr
+    assert f"port {port} is in use" in out.stderr and "--grpc-port" in out.stderr
+
+
 def _free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

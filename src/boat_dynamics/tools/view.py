@@ -88,14 +88,11 @@ def _scene(options: ViewOptions, status: TextIO) -> tuple[Scene, object, str | N
     if options.save:
         rr.save(options.save, default_blueprint=blueprint, recording=rec)
         return scene, rec, None
-    try:
-        uri = rr.serve_grpc(grpc_port=options.grpc_port, default_blueprint=blueprint,
-                            recording=rec)
-        rr.serve_web_viewer(web_port=options.web_port, open_browser=False, connect_to=uri)
-    except Exception as exc:  # Rerun raises its own errors (a port in use, say)
-        raise ViewError(f"cannot serve the view on ports {options.web_port} (web) and "
-                        f"{options.grpc_port} (gRPC): {exc}; choose others with --web-port "
-                        "and --grpc-port") from exc
+    for port, what in ((options.grpc_port, "--grpc-port"), (options.web_port, "--web-port")):
+        _check_free(port, what)  # Rerun only logs a taken port, and serves nothing
+    uri = rr.serve_grpc(grpc_port=options.grpc_port, default_blueprint=blueprint,
+                        recording=rec)
+    rr.serve_web_viewer(web_port=options.web_port, open_browser=False, connect_to=uri)
     url = f"http://localhost:{options.web_port}/?url={quote(uri, safe='')}"
     print(f"boatsim view: open {url} in a browser (Ctrl-C ends the view)", file=status)
     return scene, rec, url
@@ -109,6 +106,19 @@ def _framing(scenario: Scenario | None) -> tuple[str | None, float]:
         return scenario.boats[0].name, 4.0 * scenario.boats[0].params.hull.length
     starts = [b.initial.position[:2] for b in scenario.boats]
     return None, 1.2 * float(max(max(abs(v) for v in p) for p in starts)) + 10.0
+
+
+def _check_free(port: int, option: str) -> None:
+    """Raise ViewError when ``port`` is taken (another view, another server)."""
+    import socket
+
+    with socket.socket() as probe:
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # a closed view's is free
+        try:
+            probe.bind(("0.0.0.0", port))
+        except OSError as exc:
+            raise ViewError(f"port {port} is in use ({exc.strerror}): another `boatsim view`? "
+                            f"Choose another with {option}") from exc
 
 
 def _pose(msg) -> tuple[tuple[float, float, float], tuple[float, float, float, float]]:
