@@ -163,6 +163,12 @@ def admissible_seas(draw, max_ak=math.inf):
 
 @settings(max_examples=200, deadline=None)
 @given(sea=admissible_seas(), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16))
+# a cusp (Q k a = 1): a point starting next to it was left 0.46 mm off after 60 fixed-point
+# steps (found by a loaded CI-like run); a damped Newton step now gets it to 1e-7 m
+@example(sea=WaveField((WaveComponent(0.3183098861837907, 2.0, 0.345703125, 1.0, 0.5),)),
+         t=0.0, seed=1)
+@example(sea=WaveField((WaveComponent(1.0 / math.pi, 2.0, 0.345703125, 1.0, 0.5),)),
+         t=1.3, seed=0)
 def test_inversion_residual_below_1mm_for_admissible_seas(sea, t, seed):
     xy = np.random.default_rng(seed).uniform(-500, 500, size=(64, 2))
     p0 = find_rest_positions(sea, xy, t)
