@@ -209,6 +209,60 @@ def test_two_lockstep_replays_give_identical_outputs(boatsim, tmp_path):
     assert thrust_at[2.3] == pytest.approx(2000.0) and thrust_at[2.4] == pytest.approx(-1000.0)
 
 
+def test_a_replay_against_a_real_time_run_follows_the_wall_clock(boatsim, tmp_path):
+    # a real-time run has no /boatsim/lockstep subscription: after a short wait for one the
+    # replayer publishes on the wall clock, and the run receives every command
+    _command_bag(tmp_path / "commands")
+    sim = boatsim("run", "--record", str(tmp_path / "live"))
+    out = cli_run("replay", str(tmp_path / "commands"), timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert "(wall clock x1)" in out.stderr and "replayed 8 commands" in out.stderr
+    assert sim.stop() == 0
+    with AnyReader([tmp_path / "live"]) as reader:
+        counts = {c.topic: c.msgcount for c in reader.connections
+                  if c.topic in ("/cmd_thrust", "/cmd_rudder")}
+    assert counts == {"/cmd_thrust": 5, "/cmd_rudder": 3}
+
+
+def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(probe, tmp_path):
+    # A stand-in for a loaded machine's `run --fast --lockstep`: it follows /boatsim/lockstep
+    # at once but publishes /clock only after 3 s (wall). The replayer used to give /clock 2 s,
+    # then went by the wall clock while the simulation waited at t = 0 for ever.
+    from rosgraph_msgs.msg import Clock
+    from std_msgs.msg import Float64MultiArray
+
+    from boat_msgs_py import names
+    from boat_msgs_py.convert import seconds_to_time
+    from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
+
+    _command_bag(tmp_path / "commands")
+    node, grants, received = probe.node, [], []
+    node.create_subscription(Float64MultiArray, names.LOCKSTEP,
+                             lambda m: grants.append(tuple(m.data)), COMMAND_QOS)
+    for topic in ("/cmd_thrust", "/cmd_rudder"):
+        node.create_subscription(Float64, topic, received.append, COMMAND_QOS)
+    clock = node.create_publisher(Clock, names.CLOCK, CLOCK_QOS)
+    replay = subprocess.Popen([sys.executable, "-m", "boat_dynamics", "replay",
+                               str(tmp_path / "commands")], stderr=subprocess.PIPE, text=True)
+    try:
+        probe.spin_until(lambda: node.count_publishers(names.LOCKSTEP) > 0, 30.0,
+                         "the replayer")
+        probe.spin_for(3.0)  # from when the replayer is there
+        t = 0.0
+        while replay.poll() is None:  # the simulation holds at each grant's time
+            if grants and grants[-1][0] < 1e17:
+                t = max(t, grants[-1][0])
+            clock.publish(Clock(clock=seconds_to_time(t)))
+            probe.spin_for(0.02)
+        err = replay.stderr.read()
+    finally:
+        if replay.poll() is None:
+            replay.kill()
+    assert replay.returncode == 0, err
+    assert "(lockstep with /clock)" in err and "replayed 8 commands" in err
+    probe.spin_until(lambda: len(received) == 8, 10.0, "the 8 commands")
+
+
 def test_replay_without_a_simulation_or_commands_exits_2(tmp_path):
     _command_bag(tmp_path / "commands")
     out = cli_run("replay", str(tmp_path / "commands"), "--timeout", "1")

@@ -12,6 +12,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from typing import Literal
 
 import numpy as np
 from boat_msgs.msg import Environment as EnvironmentMsg
@@ -72,7 +73,10 @@ from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
 from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
 
-__all__ = ["DynamicsNode", "SimClock", "StartInterrupted", "advertises_wrenches"]
+__all__ = ["DynamicsNode", "LockstepRole", "SimClock", "StartInterrupted", "advertises_wrenches"]
+
+#: How a dynamics node takes part in a lockstep replay (see :class:`DynamicsNode`).
+LockstepRole = Literal["follow", "announce", "none"]
 
 
 class StartInterrupted(RuntimeError):
@@ -177,9 +181,13 @@ class DynamicsNode(Node):
             where the clock's epoch is known only once every process is ready).
         stopped: checked between boats while they are made: a large fleet's start-up stops
             on Ctrl-C (raises StartInterrupted) instead of making every boat first.
-        follow_lockstep: subscribe to /boatsim/lockstep (False for a shard of a step barrier,
-            whose clock owner does: a replayer then waits for the owner, not for a shard; a
-            real-time shard does, so that a replayer knows a simulation is there).
+        lockstep: ``follow``: step only as far as a replayer grants on /boatsim/lockstep
+            (``run --fast --lockstep``); ``announce``: subscribe to it without following it (a
+            shard of a lockstep step barrier, whose clock owner follows the replayer): either
+            way the subscription tells a replayer that the simulation is in lockstep, and it
+            is made before the boats' command subscriptions, so a replayer that has discovered
+            those has discovered it too (DDS announces a participant's endpoints in order);
+            ``none``: no subscription (not in lockstep).
         context: the rclpy context (DDS participant) to live in; None = the default one.
         advertise_wrenches: make every boat's ``wrench/<source>`` publishers now; False = each
             once someone subscribes to it (:func:`advertises_wrenches`).
@@ -188,7 +196,7 @@ class DynamicsNode(Node):
     def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
                  tap: Tap | None = None, name: str = "boat_dynamics",
                  deferred: bool = False, stopped: Callable[[], bool] | None = None,
-                 follow_lockstep: bool = True, context: Context | None = None,
+                 lockstep: LockstepRole = "none", context: Context | None = None,
                  advertise_wrenches: bool = True) -> None:
         super().__init__(name, context=context)
         sim = scenario.simulation
@@ -243,6 +251,13 @@ class DynamicsNode(Node):
                 "someone subscribes to them (simulation.wrench_topics: "
                 f"{sim.wrench_topics}; `advertised` lists them all from the start, with 9 DDS "
                 "endpoints a boat more to make); a recording holds them all")
+        self.granted_until = 0.0  # lockstep: may step while t < this ...
+        self.granted_commands = 0  # ... once this many commands have arrived
+        self._lockstep_sub = None  # before the boats' command subscriptions (see lockstep)
+        if lockstep != "none":
+            self._lockstep_sub = self.create_subscription(
+                Float64MultiArray, names.LOCKSTEP,
+                self._on_lockstep if lockstep == "follow" else lambda msg: None, COMMAND_QOS)
         self.boats = []
         for i, spec in enumerate(scenario.boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
@@ -269,11 +284,6 @@ class DynamicsNode(Node):
         # not warned about since)
         self._warned: dict[tuple[str, str], tuple[float, int]] = {}
         self._wrong_types: set[tuple[str, str]] = set()  # (command topic, type) reported
-        self.granted_until = 0.0  # lockstep: may step while t < this ...
-        self.granted_commands = 0  # ... once this many commands have arrived
-        self._lockstep_sub = (self.create_subscription(
-            Float64MultiArray, names.LOCKSTEP, self._on_lockstep, COMMAND_QOS)
-            if follow_lockstep else None)  # a shard: the clock owner follows the replayer
         self._mode_params = {}
         for boat in self.boats:
             name = f"{boat.spec.name}.control_mode" if boat.spec.name else "control_mode"

@@ -33,6 +33,7 @@ from boat_dynamics.process import SharedTime, start_child, stop_processes, watch
 from boat_dynamics.ros.barrier import StepConductor, StepMember, shard_slice
 from boat_dynamics.ros.node import (
     DynamicsNode,
+    LockstepRole,
     SimClock,
     StartInterrupted,
     advertises_wrenches,
@@ -267,6 +268,13 @@ class _Parent:
             self.go.set()
 
 
+def _lockstep_role(options: RunOptions) -> LockstepRole:
+    """The dynamics node's part in a lockstep replay: a shard's clock owner follows it."""
+    if not options.lockstep:
+        return "none"
+    return "announce" if options.shard is not None else "follow"
+
+
 def _dynamics_name(scenario: Scenario, options: RunOptions) -> str:
     """The dynamics node's name: ``boat_dynamics``, or a shard's.
 
@@ -377,7 +385,7 @@ class _Loop:
                                          tap=tap, name=_dynamics_name(scenario, options),
                                          deferred=deferred or options.resume is not None,
                                          stopped=self.stop.is_set,
-                                         follow_lockstep=options.shard is None or not fast,
+                                         lockstep=_lockstep_role(options),
                                          advertise_wrenches=self.advertise_wrenches,
                                          context=self.participants.new() if self.nodes else None)
             self.nodes.append(self.dynamics)

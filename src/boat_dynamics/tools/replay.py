@@ -26,6 +26,9 @@ from boat_msgs_py import names
 __all__ = ["Command", "ReplayError", "command_schedule", "replay"]
 
 _FOREVER = 1e18  # the last grant: run on to the end
+#: s (wall) a replayer that has found the commands' subscribers waits for a lockstep follower
+#: before it replays on the wall clock (a real-time simulation has none).
+_FOLLOWER_GRACE = 2.0
 
 
 class ReplayError(RuntimeError):
@@ -108,23 +111,38 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
                 raise ReplayError(f"timed out after {timeout:g} s waiting for {what}")
             executor.spin_once(timeout_sec=0.01)
 
-    def simulation_found() -> bool:
-        # The lockstep topic's subscriber must be the simulation's (its dynamics node, its
-        # clock owner, or real-time --processes children), not a recorder's: a sharded run's
-        # recorder, in a participant of its own, may be discovered before the clock owner,
-        # whose /clock then came too late, and the replay fell back to the wall clock while
-        # the simulation waited at t = 0 for grants (seen in a loaded test run).
-        followers = {i.node_name for i in node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
-        followers.discard(names.RECORDER_NODE)
-        return (all(p.get_subscription_count() > 0 for p in pubs.values()) and bool(followers)
-                and not followers & {"", names.UNKNOWN_NODE})
+    def commands_followed() -> bool:
+        return all(p.get_subscription_count() > 0 for p in pubs.values())
+
+    def followers() -> tuple[set[str], bool]:
+        # /boatsim/lockstep's subscribers other than a recorder's (names), and whether one is
+        # not named yet (its node's discovery has not arrived: ask again)
+        found = {i.node_name for i in node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
+        found.discard(names.RECORDER_NODE)
+        unnamed = bool(found & {"", names.UNKNOWN_NODE})
+        return found - {"", names.UNKNOWN_NODE}, unnamed
+
+    def lockstep_found() -> bool:
+        # A lockstep simulation subscribes to /boatsim/lockstep before its command topics
+        # (each dynamics process, DynamicsNode's ``lockstep``); a real-time one does not. So
+        # once the commands' subscribers are found, a follower is found too or is not
+        # coming: wait a little for it, and on while one is still unnamed. (Before, any
+        # follower counted and /clock had 2 s to come: on a loaded machine it came later,
+        # the replay went by the wall clock and the simulation waited at t = 0 for ever.)
+        start = time.monotonic()
+        while True:
+            found, unnamed = followers()
+            waited = time.monotonic() - start
+            if found or waited > timeout or (waited > _FOLLOWER_GRACE and not unnamed):
+                return bool(found)
+            executor.spin_once(timeout_sec=0.05)
 
     try:
-        spin_until(simulation_found, f"a simulation subscribing to {', '.join(pubs)}")
-        deadline = time.monotonic() + 2.0
-        while math.isnan(clock[0]) and time.monotonic() < deadline:
-            executor.spin_once(timeout_sec=0.05)
-        lockstep = not math.isnan(clock[0])
+        spin_until(commands_followed, f"a simulation subscribing to {', '.join(pubs)}")
+        lockstep = lockstep_found()
+        if lockstep:
+            spin_until(lambda: not math.isnan(clock[0]),
+                       f"/clock from the lockstep simulation ({', '.join(sorted(followers()[0]))})")
         log.info(f"replaying {len(schedule)} commands from {bag} "
                  f"({'lockstep with /clock' if lockstep else f'wall clock x{rate:g}'})")
         sent = _send(schedule, pubs, grant if lockstep else None, clock, rate, spin_until)
