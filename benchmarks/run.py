@@ -320,6 +320,43 @@ def bench_scale(seconds: float) -> None:
                       f"{best[shards] / best[0]:.2f}")
 
 
+def bench_split() -> None:
+    """What splitting 100 boats into 2 shards of 50 can gain in the physics, at best.
+
+    ``pipeline.step`` of the scale bench's fleet (default mesh boxes, 16 components) at 50
+    and 100 boats, timed in turn in one process (best of 15 chunks of 10 steps): its cost
+    per step is a fixed part plus a part per boat, and every shard pays the fixed part again,
+    so two shards of 50 step at most T(100) / T(50) times as fast as one process of 100, on
+    two idle cores. The run's other work (publishing, spinning) is almost all per boat.
+    """
+    runs = {}
+    for n in (50, 100):
+        sc = pipeline.init_scenario(parse_scenario(_fleet(n)))
+        runs[n] = (System.build([b.params for b in sc.boats]),
+                   [FleetState.stack([b.initial for b in sc.boats])],
+                   FleetInputs.stack([BoatInputs(0.5, 0.1)] * n), sc.sea)
+
+    def chunk(n: int) -> None:
+        system, state, commands, sea = runs[n]
+        s = state[0]
+        for _ in range(10):
+            s = pipeline.step(system, s, commands, sea, 0.01).state
+        state[0] = s
+
+    for n in runs:
+        chunk(n)  # settle from the release
+    steps = {n: math.inf for n in runs}
+    for _ in range(15):  # in turn: a change of this machine's speed hits both
+        for n in runs:
+            steps[n] = min(steps[n], _best_of(lambda n=n: chunk(n), 1) / 10)
+    per_boat = (steps[100] - steps[50]) / 50
+    fixed = steps[50] - 50 * per_boat
+    print(f"  pipeline.step, 50 / 100 mesh boats: {steps[50] * 1e6:.0f} / "
+          f"{steps[100] * 1e6:.0f} us a step = {fixed * 1e6:.0f} us fixed + "
+          f"{per_boat * 1e6:.1f} us a boat; 2 shards of 50 against one process of 100: "
+          f"at most {steps[100] / steps[50]:.2f}x the physics throughput")
+
+
 def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
@@ -341,6 +378,7 @@ def main() -> None:
         bench_phases(args.run_seconds / 2, 10)
     if args.only in (None, "scale"):
         print("== boatsim run --fast in processes: one process against --shards N")
+        bench_split()
         bench_scale(args.run_seconds / 2)
 
 

@@ -7,10 +7,12 @@ from __future__ import annotations
 
 __all__ = [
     "CLOCK",
+    "CLOCK_NODE",
     "CMD_RUDDER",
     "CMD_THRUST",
     "COMMAND_NAMES",
     "DIAGNOSTICS",
+    "DYNAMICS_NODE",
     "ENVIRONMENT",
     "FLEET_STATE",
     "LOCKSTEP",
@@ -93,6 +95,11 @@ WORLD_FRAME = "world"
 
 #: The node of `boatsim record` (the --processes children wait until it subscribes to them).
 RECORDER_NODE = "boatsim_record"
+#: The dynamics node (one process), and the start of every dynamics process's node name
+#: (``boat_dynamics_<boat>`` with --processes, ``boat_dynamics_shard_<K>`` with --shards).
+DYNAMICS_NODE = "boat_dynamics"
+#: The clock owner of a --fast run over several processes (the step barrier's conductor).
+CLOCK_NODE = "boatsim_clock"
 #: The node name rmw gives an endpoint whose node it does not know yet (the graph lags).
 UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
 

@@ -209,12 +209,25 @@ def test_two_lockstep_replays_give_identical_outputs(boatsim, tmp_path):
     assert thrust_at[2.3] == pytest.approx(2000.0) and thrust_at[2.4] == pytest.approx(-1000.0)
 
 
-def test_a_replay_against_a_real_time_run_follows_the_wall_clock(boatsim, tmp_path):
+def test_a_replay_against_a_real_time_run_follows_the_wall_clock(boatsim, probe, tmp_path):
     # a real-time run has no /boatsim/lockstep subscription: after a short wait for one the
-    # replayer publishes on the wall clock, and the run receives every command
+    # replayer publishes on the wall clock, and the run receives every command. A node that
+    # only listens to /boatsim/lockstep (here named as `ros2 bag record -a`'s) is no lockstep
+    # simulation: the replayer took it for one and waited --timeout for its /clock, then failed.
+    import rclpy
+    from std_msgs.msg import Float64MultiArray
+
+    from boat_msgs_py import names
+    from boat_msgs_py.qos import COMMAND_QOS
+
+    listener = rclpy.create_node("rosbag2_recorder", context=probe.context)
+    listener.create_subscription(Float64MultiArray, names.LOCKSTEP, lambda m: None, COMMAND_QOS)
+    probe.executor.add_node(listener)
     _command_bag(tmp_path / "commands")
     sim = boatsim("run", "--record", str(tmp_path / "live"))
-    out = cli_run("replay", str(tmp_path / "commands"), timeout=60)
+    out = cli_run("replay", str(tmp_path / "commands"), "--timeout", "30", timeout=60)
+    probe.executor.remove_node(listener)
+    listener.destroy_node()
     assert out.returncode == 0, out.stderr
     assert "(wall clock x1)" in out.stderr and "replayed 8 commands" in out.stderr
     assert sim.stop() == 0
@@ -228,6 +241,7 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     # A stand-in for a loaded machine's `run --fast --lockstep`: it follows /boatsim/lockstep
     # at once but publishes /clock only after 3 s (wall). The replayer used to give /clock 2 s,
     # then went by the wall clock while the simulation waited at t = 0 for ever.
+    import rclpy
     from rosgraph_msgs.msg import Clock
     from std_msgs.msg import Float64MultiArray
 
@@ -237,8 +251,11 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
 
     _command_bag(tmp_path / "commands")
     node, grants, received = probe.node, [], []
-    node.create_subscription(Float64MultiArray, names.LOCKSTEP,
-                             lambda m: grants.append(tuple(m.data)), COMMAND_QOS)
+    # the replayer follows only boatsim's own nodes' lockstep subscriptions: named as one
+    follower = rclpy.create_node(names.DYNAMICS_NODE, context=probe.context)
+    follower.create_subscription(Float64MultiArray, names.LOCKSTEP,
+                                 lambda m: grants.append(tuple(m.data)), COMMAND_QOS)
+    probe.executor.add_node(follower)
     for topic in ("/cmd_thrust", "/cmd_rudder"):
         node.create_subscription(Float64, topic, received.append, COMMAND_QOS)
     clock = node.create_publisher(Clock, names.CLOCK, CLOCK_QOS)
@@ -258,6 +275,8 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     finally:
         if replay.poll() is None:
             replay.kill()
+        probe.executor.remove_node(follower)
+        follower.destroy_node()
     assert replay.returncode == 0, err
     assert "(lockstep with /clock)" in err and "replayed 8 commands" in err
     probe.spin_until(lambda: len(received) == 8, 10.0, "the 8 commands")

@@ -145,7 +145,7 @@ class StepConductor(Node):
 
     def __init__(self, count: int, clock: SimClock, duration: float | None, lockstep: bool,
                  tap: Tap | None = None, context: Context | None = None) -> None:
-        super().__init__("boatsim_clock", context=context)
+        super().__init__(names.CLOCK_NODE, context=context)
         self.count, self.clock, self.lockstep = count, clock, lockstep
         #: The step count at which the run ends (inf = none).
         self.end = math.inf if duration is None else round(duration * clock.rate_hz)

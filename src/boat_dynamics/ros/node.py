@@ -194,7 +194,7 @@ class DynamicsNode(Node):
     """
 
     def __init__(self, scenario: Scenario, clock: SimClock, publish_clock: bool = False,
-                 tap: Tap | None = None, name: str = "boat_dynamics",
+                 tap: Tap | None = None, name: str = names.DYNAMICS_NODE,
                  deferred: bool = False, stopped: Callable[[], bool] | None = None,
                  lockstep: LockstepRole = "none", context: Context | None = None,
                  advertise_wrenches: bool = True) -> None:

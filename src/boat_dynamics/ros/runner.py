@@ -282,10 +282,10 @@ def _dynamics_name(scenario: Scenario, options: RunOptions) -> str:
     makes them), else ``boat_dynamics_shard_<K>``.
     """
     if options.shard is None:
-        return "boat_dynamics"
+        return names.DYNAMICS_NODE
     if len(scenario.boats) == 1 and scenario.boats[0].name:
-        return f"boat_dynamics_{scenario.boats[0].name}"
-    return f"boat_dynamics_shard_{options.shard[0]}"
+        return f"{names.DYNAMICS_NODE}_{scenario.boats[0].name}"
+    return f"{names.DYNAMICS_NODE}_shard_{options.shard[0]}"
 
 
 #: The step barrier's protocol, not recorded (as /boatsim/lockstep, it is no simulation data).
@@ -305,7 +305,7 @@ def _tapped_by_shards(node, topic: str) -> bool | None:
         return False
     infos = (*node.get_publishers_info_by_topic(topic),
              *node.get_subscriptions_info_by_topic(topic))
-    if any(info.node_name.startswith("boat_dynamics") for info in infos):
+    if any(info.node_name.startswith(names.DYNAMICS_NODE) for info in infos):
         return True
     if any(info.node_name in ("", names.UNKNOWN_NODE) for info in infos):
         return None

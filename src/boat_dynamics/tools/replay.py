@@ -23,12 +23,24 @@ from pathlib import Path
 from boat_dynamics.tools.bags import BagError, read_bag, read_bag_topics
 from boat_msgs_py import names
 
-__all__ = ["Command", "ReplayError", "command_schedule", "replay"]
+__all__ = ["Command", "ReplayError", "command_schedule", "follows_lockstep", "replay"]
 
 _FOREVER = 1e18  # the last grant: run on to the end
 #: s (wall) a replayer that has found the commands' subscribers waits for a lockstep follower
 #: before it replays on the wall clock (a real-time simulation has none).
 _FOLLOWER_GRACE = 2.0
+
+
+def follows_lockstep(node_name: str) -> bool:
+    """Whether a subscriber of /boatsim/lockstep with this node name obeys it.
+
+    Only boatsim's own: a dynamics node (``boat_dynamics``, ``boat_dynamics_<boat>``,
+    ``boat_dynamics_shard_<K>``) or the clock owner of a run over several processes. A
+    recorder (``boatsim record``, ``ros2 bag record``) or a user's node that merely listens
+    would otherwise be taken for a lockstep simulation: the replayer waited for its /clock
+    until --timeout and failed, where a real-time run wants the wall clock.
+    """
+    return node_name.startswith(names.DYNAMICS_NODE) or node_name == names.CLOCK_NODE
 
 
 class ReplayError(RuntimeError):
@@ -115,12 +127,11 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         return all(p.get_subscription_count() > 0 for p in pubs.values())
 
     def followers() -> tuple[set[str], bool]:
-        # /boatsim/lockstep's subscribers other than a recorder's (names), and whether one is
-        # not named yet (its node's discovery has not arrived: ask again)
+        # /boatsim/lockstep's subscribers that follow it (names), and whether one is not
+        # named yet (its node's discovery has not arrived: ask again)
         found = {i.node_name for i in node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
-        found.discard(names.RECORDER_NODE)
         unnamed = bool(found & {"", names.UNKNOWN_NODE})
-        return found - {"", names.UNKNOWN_NODE}, unnamed
+        return {n for n in found if follows_lockstep(n)}, unnamed
 
     def lockstep_found() -> bool:
         # A lockstep simulation subscribes to /boatsim/lockstep before its command topics
