@@ -157,7 +157,9 @@ class WaveField:
     components: tuple[WaveComponent, ...] = ()
     gravity: float = GRAVITY
     depth: float = math.inf
-    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    # what filtered() and weights() computed: derived from the frozen fields, written by
+    # those two methods only (once per sea and key; never stale)
+    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "components", tuple(self.components))
@@ -181,10 +183,17 @@ class WaveField:
         if min_wavelength <= 0.0:
             return self
         key = ("filtered", float(min_wavelength))
-        if key not in self._cache:
+        if key not in self._derived:
             kept = tuple(c for c in self.components if c.wavelength >= min_wavelength)
-            self._cache[key] = WaveField(kept, self.gravity, self.depth)
-        return self._cache[key]
+            self._derived[key] = WaveField(kept, self.gravity, self.depth)
+        return self._derived[key]
+
+    def weights(self, precision: Precision) -> _Weights:
+        """The surface kernels' per-component weights in ``precision``; computed once."""
+        key = ("weights", precision)
+        if key not in self._derived:
+            self._derived[key] = _weights_of(self.arrays, precision)
+        return self._derived[key]
 
     @cached_property
     def surface_stokes_drift(self) -> np.ndarray:
@@ -292,27 +301,22 @@ class _Weights:
 _OUTPUTS = ("z", "vx", "vy", "vz", "ax", "ay", "az", "A", "B", "C", "Sx", "Sy")
 
 
-def _weights(wf: WaveField, precision: Precision) -> _Weights:
-    key = ("weights", precision)
-    if key not in wf._cache:
-        ar = wf.arrays
-        qak = ar.q * ar.a * ar.k
-        qaw = ar.q * ar.a * ar.omega
-        jac = np.stack([qak * ar.dx * ar.dx, qak * ar.dx * ar.dy, qak * ar.dy * ar.dy], axis=1)
-        zero = np.zeros_like(ar.a)
-        # P = p0 - sum Q a D sin(theta) + z a cos(theta), theta = k D.p0 - omega t + phi
-        of_cos = [ar.a, qaw * ar.dx, qaw * ar.dy, zero, zero, zero, -ar.a * ar.omega**2,
-                  *jac.T, zero, zero]
-        of_sin = [zero, zero, zero, ar.a * ar.omega, qaw * ar.omega * ar.dx,
-                  qaw * ar.omega * ar.dy, zero, zero, zero, zero, ar.a * ar.k * ar.dx,
-                  ar.a * ar.k * ar.dy]
-        outputs = np.concatenate([np.stack(of_cos, axis=1), np.stack(of_sin, axis=1)])
-        dt = np.dtype(precision)
-        wf._cache[key] = _Weights(
-            kd=ar.kd.astype(dt), qad=ar.qad.astype(dt), jac=jac.astype(dt),
-            outputs=outputs.astype(dt), horizontal=bool(np.any(ar.q * ar.a > 0.0)),
-        )
-    return wf._cache[key]
+def _weights_of(ar: _Arrays, precision: Precision) -> _Weights:
+    """The kernels' per-component weights of a sea's arrays, in ``precision``."""
+    qak = ar.q * ar.a * ar.k
+    qaw = ar.q * ar.a * ar.omega
+    jac = np.stack([qak * ar.dx * ar.dx, qak * ar.dx * ar.dy, qak * ar.dy * ar.dy], axis=1)
+    zero = np.zeros_like(ar.a)
+    # P = p0 - sum Q a D sin(theta) + z a cos(theta), theta = k D.p0 - omega t + phi
+    of_cos = [ar.a, qaw * ar.dx, qaw * ar.dy, zero, zero, zero, -ar.a * ar.omega**2,
+              *jac.T, zero, zero]
+    of_sin = [zero, zero, zero, ar.a * ar.omega, qaw * ar.omega * ar.dx,
+              qaw * ar.omega * ar.dy, zero, zero, zero, zero, ar.a * ar.k * ar.dx,
+              ar.a * ar.k * ar.dy]
+    outputs = np.concatenate([np.stack(of_cos, axis=1), np.stack(of_sin, axis=1)])
+    dt = np.dtype(precision)
+    return _Weights(kd=ar.kd.astype(dt), qad=ar.qad.astype(dt), jac=jac.astype(dt),
+                    outputs=outputs.astype(dt), horizontal=bool(np.any(ar.q * ar.a > 0.0)))
 
 
 def _check_precision(precision: Precision) -> None:
@@ -399,7 +403,7 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: Precision, invert
         (p0 (N, 2) float64 m, sin theta (N, M), cos theta (N, M)) in ``precision``.
     """
     dt = np.dtype(precision)
-    w = _weights(wf, precision)
+    w = wf.weights(precision)
     n = xy.shape[0]
     base = xy @ wf.arrays.kd + _time_phase(wf, t)
     if dt != np.float64:  # reduced to [-pi, pi]: rint is several times cheaper than np.mod
@@ -566,7 +570,7 @@ def sample_surface(
                              pts.copy())
     p0, s, c = _solve(sea, pts, t, precision, invert, INVERSION_TOLERANCE[precision],
                       INVERSION_MAX_ITERATIONS)
-    w = _weights(sea, precision)
+    w = sea.weights(precision)
     out = (np.concatenate([c, s], axis=1) @ w.outputs).astype(float)  # columns: _OUTPUTS
     a, b, cc, sx, sy = out[:, 7], out[:, 8], out[:, 9], out[:, 10], out[:, 11]
     # dP/dx0 x dP/dy0 with dP/dx0 = (1 - A, -B, -Sx), dP/dy0 = (-B, 1 - C, -Sy)
