@@ -13,10 +13,14 @@ from support import cli_run
 from boat_dynamics.tools.bagfile import merge
 from boat_dynamics.tools.bags import compare_bags, read_bag
 
-#: Three boats (two of the models, one scripted). A surface query's answer for a point does
-#: not depend on the other points of its batch; regrouping the fleet changes only the rounding
-#: of a few float64 operations over groups of boats (measured: 8e-17).
-REGROUPED = 1e-12
+#: Three boats (two of the models, one scripted). A surface query takes each point's phase on
+#: its own, so regrouping the fleet changes only how BLAS rounds the sums over the wave
+#: components of a batch's rows: by a row's place in the batch, on some CPUs. float32 (the
+#: default): 1.3e-8 m/s and 4e-9 m in 3 s on an AMD EPYC (AVX2 kernels, 2026-12), 8e-17 where
+#: the machine of 2026-11 ran (another CPU).
+REGROUPED = 1e-6
+#: float64 queries: the same rounding at 1e-16 (measured: 8e-17 m).
+REGROUPED_64 = 1e-12
 FLEET = """
 simulation: {seed: 1}
 ocean:
@@ -76,7 +80,7 @@ def test_one_shard_is_bit_identical_and_float64_queries_agree_too(fleet):
     _odometry_agrees(fleet / "one", fleet / "shard1", 0.0)
     _run(fleet, "one64", scenario="fleet64.yaml")
     _run(fleet, "shards64", "--shards", "2", scenario="fleet64.yaml")
-    _odometry_agrees(fleet / "one64", fleet / "shards64", REGROUPED)
+    _odometry_agrees(fleet / "one64", fleet / "shards64", REGROUPED_64)
 
 
 def test_a_process_per_boat_with_fast(fleet):
