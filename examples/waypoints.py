@@ -65,8 +65,11 @@ class Waypoints(Node):
         prefix = f"/{ns}" if ns else ""
         self.left = self.create_publisher(Float64, f"{prefix}/thrusters/left/thrust", 10)
         self.right = self.create_publisher(Float64, f"{prefix}/thrusters/right/thrust", 10)
-        self.create_subscription(NavSatFix, f"{prefix}/gnss/fix", self.on_fix, 10)
-        self.create_subscription(Imu, f"{prefix}/imu/data", self.on_imu, 10)
+        # the latest reading only (depth 1): a guidance that falls behind steers on the boat's
+        # state now, not on a queue of old ones (with 10, a loaded machine left it 0.1 s late
+        # and slewing about its legs)
+        self.create_subscription(NavSatFix, f"{prefix}/gnss/fix", self.on_fix, 1)
+        self.create_subscription(Imu, f"{prefix}/imu/data", self.on_imu, 1)
 
     def on_fix(self, msg: NavSatFix) -> None:
         """Position in the local east-north plane of the mean of the first five fixes."""
