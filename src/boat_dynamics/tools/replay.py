@@ -120,7 +120,8 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         deadline = time.monotonic() + timeout
         while not condition():
             if time.monotonic() > deadline:
-                raise ReplayError(f"timed out after {timeout:g} s waiting for {what}")
+                where = "" if math.isnan(clock[0]) else f" (its /clock: t = {clock[0]:.3f} s)"
+                raise ReplayError(f"timed out after {timeout:g} s waiting for {what}{where}")
             executor.spin_once(timeout_sec=0.01)
 
     def commands_followed() -> bool:
