@@ -95,6 +95,14 @@ class Probe:
         self.node = rclpy.create_node("probe", context=self.context)
         self.executor = SingleThreadedExecutor(context=self.context)
         self.executor.add_node(self.node)
+        self._others = []
+
+    def other_node(self, name: str):
+        """A second node of the probe's, named ``name`` (spun with it, destroyed by close)."""
+        node = rclpy.create_node(name, context=self.context)
+        self.executor.add_node(node)
+        self._others.append(node)
+        return node
 
     def spin_for(self, seconds: float) -> None:
         end = time.monotonic() + seconds
@@ -116,6 +124,8 @@ class Probe:
 
     def close(self) -> None:
         self.executor.shutdown(timeout_sec=1.0)
+        for node in self._others:
+            node.destroy_node()
         self.node.destroy_node()
         rclpy.try_shutdown(context=self.context)
 

@@ -219,20 +219,16 @@ def test_a_replay_against_a_real_time_run_follows_the_wall_clock(boatsim, probe,
     # replayer publishes on the wall clock, and the run receives every command. A node that
     # only listens to /boatsim/lockstep (here named as `ros2 bag record -a`'s) is no lockstep
     # simulation: the replayer took it for one and waited --timeout for its /clock, then failed.
-    import rclpy
     from std_msgs.msg import Float64MultiArray
 
     from boat_msgs_py import names
     from boat_msgs_py.qos import COMMAND_QOS
 
-    listener = rclpy.create_node("rosbag2_recorder", context=probe.context)
-    listener.create_subscription(Float64MultiArray, names.LOCKSTEP, lambda m: None, COMMAND_QOS)
-    probe.executor.add_node(listener)
+    probe.other_node("rosbag2_recorder").create_subscription(
+        Float64MultiArray, names.LOCKSTEP, lambda m: None, COMMAND_QOS)
     _command_bag(tmp_path / "commands")
     sim = boatsim("run", "--record", str(tmp_path / "live"))
     out = cli_run("replay", str(tmp_path / "commands"), "--timeout", "30", timeout=60)
-    probe.executor.remove_node(listener)
-    listener.destroy_node()
     assert out.returncode == 0, out.stderr
     assert "(wall clock x1)" in out.stderr and "replayed 8 commands" in out.stderr
     assert sim.stop() == 0
@@ -246,7 +242,6 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     # A stand-in for a loaded machine's `run --fast --lockstep`: it follows /boatsim/lockstep
     # at once but publishes /clock only after 3 s (wall). The replayer used to give /clock 2 s,
     # then went by the wall clock while the simulation waited at t = 0 for ever.
-    import rclpy
     from rosgraph_msgs.msg import Clock
     from std_msgs.msg import Float64MultiArray
 
@@ -257,10 +252,8 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     _command_bag(tmp_path / "commands")
     node, grants, received = probe.node, [], []
     # the replayer follows only boatsim's own nodes' lockstep subscriptions: named as one
-    follower = rclpy.create_node(names.DYNAMICS_NODE, context=probe.context)
-    follower.create_subscription(Float64MultiArray, names.LOCKSTEP,
-                                 lambda m: grants.append(tuple(m.data)), COMMAND_QOS)
-    probe.executor.add_node(follower)
+    probe.other_node(names.DYNAMICS_NODE).create_subscription(
+        Float64MultiArray, names.LOCKSTEP, lambda m: grants.append(tuple(m.data)), COMMAND_QOS)
     for topic in ("/cmd_thrust", "/cmd_rudder"):
         node.create_subscription(Float64, topic, received.append, COMMAND_QOS)
     clock = node.create_publisher(Clock, names.CLOCK, CLOCK_QOS)
@@ -280,8 +273,6 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     finally:
         if replay.poll() is None:
             replay.kill()
-        probe.executor.remove_node(follower)
-        follower.destroy_node()
     assert replay.returncode == 0, err
     assert "(lockstep with /clock)" in err and "replayed 8 commands" in err
     probe.spin_until(lambda: len(received) == 8, 10.0, "the 8 commands")
