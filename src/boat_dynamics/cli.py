@@ -151,6 +151,9 @@ def _add_introspection(verbs) -> None:
         p.add_argument("node_name", help="e.g. /boat_dynamics")
         for name in extra:
             p.add_argument(name)
+        p.add_argument("--timeout", type=_positive_seconds, default=5.0, metavar="S",
+                       help="seconds to wait for the node's parameter services and for each "
+                            "answer (default 5)")
 
 
 def _add_run(verbs) -> None:
@@ -474,13 +477,14 @@ def _introspect(args: argparse.Namespace) -> int:
 
 
 def _param(ros, s, args) -> list[str]:
+    wait = args.timeout
     if args.action == "list":
-        return [f"{args.node_name}:", *ros.param_list(s, args.node_name)]
+        return [f"{args.node_name}:", *ros.param_list(s, args.node_name, wait)]
     if args.action == "get":
-        return [ros.param_get(s, args.node_name, args.name)]
+        return [ros.param_get(s, args.node_name, args.name, wait)]
     if args.action == "set":
-        return [ros.param_set(s, args.node_name, args.name, args.value)]
-    return [ros.param_dump(s, args.node_name).rstrip("\n")]
+        return [ros.param_set(s, args.node_name, args.name, args.value, wait)]
+    return [ros.param_dump(s, args.node_name, wait).rstrip("\n")]
 
 
 def _compare(args: argparse.Namespace) -> int:

@@ -16,10 +16,12 @@ __all__ = [
     "ENVIRONMENT",
     "FLEET_STATE",
     "LOCKSTEP",
+    "LOCKSTEP_READY",
     "ODOM",
     "PARAMETER_EVENTS",
     "POSE",
     "RECORDER_NODE",
+    "REPLAY_NODE",
     "ROSOUT",
     "SAMPLE_SURFACE",
     "STEP_DONE",
@@ -70,6 +72,12 @@ CLOCK = "/clock"
 #: std_msgs/Float64MultiArray [T, n]: a replayer's grant "advance while t < T; I have sent n
 #: command messages" (``boatsim run --fast --lockstep`` obeys it).
 LOCKSTEP = "/boatsim/lockstep"
+#: std_msgs/String "NODE TOPIC ...": a lockstep dynamics node's word that its subscriptions
+#: to these command topics have matched the replayer's (``REPLAY_NODE``'s) publishers, said
+#: every 0.1 s (wall) while it holds. A replayer sends no command before: a command
+#: published before the subscription has matched the publisher is lost, and the simulation
+#: would wait for it for ever.
+LOCKSTEP_READY = "/boatsim/lockstep_ready"
 #: std_msgs/UInt64, latched: the step barrier's grant "a dynamics process may step while its
 #: step count is below this" (``run --fast`` over several processes: the clock owner, in the
 #: ocean's process, publishes it).
@@ -100,6 +108,8 @@ RECORDER_NODE = "boatsim_record"
 DYNAMICS_NODE = "boat_dynamics"
 #: The clock owner of a --fast run over several processes (the step barrier's conductor).
 CLOCK_NODE = "boatsim_clock"
+#: The node of `boatsim replay`.
+REPLAY_NODE = "boatsim_replay"
 #: The node name rmw gives an endpoint whose node it does not know yet (the graph lags).
 UNKNOWN_NODE = "_NODE_NAME_UNKNOWN_"
 

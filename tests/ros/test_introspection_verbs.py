@@ -87,14 +87,20 @@ def test_topic_pub_drives_a_boat(sim, probe, cli):
 def test_node_list_and_params(sim, cli):
     nodes = cli("node", "list").stdout.splitlines()
     assert {"/boat_dynamics", "/ocean", "/ocean_surface"} <= set(nodes)
-    assert "cmd_timeout" in cli("param", "list", "/boat_dynamics").stdout
-    assert cli("param", "get", "/boat_dynamics", "cmd_timeout").stdout.strip() == (
-        "Double value is: 1.0")
-    assert cli("param", "set", "/boat_dynamics", "cmd_timeout", "2").stdout.strip() == (
+
+    def param(*args):
+        # 20 s for the answers: with both cores busy `param get` once had none within 5 s
+        out = cli("param", *args, "--timeout", "20")
+        assert out.returncode == 0, out.stderr
+        return out.stdout
+
+    assert "cmd_timeout" in param("list", "/boat_dynamics")
+    assert param("get", "/boat_dynamics", "cmd_timeout").strip() == "Double value is: 1.0"
+    assert param("set", "/boat_dynamics", "cmd_timeout", "2").strip() == (
         "Set parameter successful")  # a whole number for a double: taken as 2.0
-    refused = cli("param", "set", "/boat_dynamics", "cmd_timeout", "-5").stdout
+    refused = param("set", "/boat_dynamics", "cmd_timeout", "-5")
     assert refused.startswith("Setting parameter failed: ") and "out of range" in refused
-    dump = yaml.safe_load(cli("param", "dump", "/boat_dynamics").stdout)
+    dump = yaml.safe_load(param("dump", "/boat_dynamics"))
     params = dump["/boat_dynamics"]["ros__parameters"]
     assert params["cmd_timeout"] == 2.0 and params["charlie.control_mode"] == "constrained"
     gone = cli("param", "get", "/nosuch_node", "x")

@@ -17,7 +17,7 @@ from rosbags.typesys import Stores, get_typestore
 from std_msgs.msg import Float64
 from support import cli_run
 
-from boat_dynamics.tools.bags import compare_bags
+from boat_dynamics.tools.bags import compare_bags, read_bag_topics
 
 SCRIPTED = """
 ocean: {components: [{amplitude: 0.3, wavelength: 25.0, steepness: 0.5}]}
@@ -276,6 +276,89 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     assert replay.returncode == 0, err
     assert "(lockstep with /clock)" in err and "replayed 8 commands" in err
     probe.spin_until(lambda: len(received) == 8, 10.0, "the 8 commands")
+
+
+def test_a_replay_sends_no_command_before_the_simulation_has_matched_its_publishers(
+        probe, tmp_path):
+    # A stand-in lockstep simulation that matches the replayer late: it announces on
+    # /boatsim/lockstep_ready only after 3 s (wall) and misses every grant until then. Before,
+    # the replayer sent the t = 0 commands and its first grant once, as soon as it had seen
+    # the subscriptions and /clock; a simulation that had not matched its publishers yet lost
+    # them and waited at t = 0 for ever (with both cores busy, 1 loaded suite run in 3).
+    from rosgraph_msgs.msg import Clock
+    from std_msgs.msg import Float64MultiArray, String
+
+    from boat_msgs_py import names
+    from boat_msgs_py.convert import seconds_to_time
+    from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
+
+    _command_bag(tmp_path / "commands")
+    sim = probe.other_node(names.DYNAMICS_NODE)
+    matched, grants, received, early = [False], [], [], []
+
+    def on_command(msg):
+        (received if matched[0] else early).append(msg.data)
+
+    sim.create_subscription(Float64MultiArray, names.LOCKSTEP,
+                            lambda m: matched[0] and grants.append(tuple(m.data)), COMMAND_QOS)
+    for topic in ("/cmd_thrust", "/cmd_rudder"):
+        sim.create_subscription(Float64, topic, on_command, COMMAND_QOS)
+    clock = sim.create_publisher(Clock, names.CLOCK, CLOCK_QOS)
+    ready = sim.create_publisher(String, names.LOCKSTEP_READY, COMMAND_QOS)
+    replay = subprocess.Popen([sys.executable, "-m", "boat_dynamics", "replay",
+                               str(tmp_path / "commands")], stderr=subprocess.PIPE, text=True)
+    try:
+        probe.spin_until(lambda: sim.count_publishers(names.LOCKSTEP) > 0, 30.0, "the replayer")
+        t, start = 0.0, time.monotonic()
+        while replay.poll() is None:  # the simulation holds at each grant's time
+            if not matched[0] and time.monotonic() - start > 3.0:
+                matched[0] = True
+            if matched[0]:
+                ready.publish(String(data=f"{names.DYNAMICS_NODE} /cmd_rudder /cmd_thrust"))
+            if grants and grants[-1][0] < 1e17:
+                t = max(t, grants[-1][0])
+            clock.publish(Clock(clock=seconds_to_time(t)))
+            probe.spin_for(0.02)
+        err = replay.stderr.read()
+    finally:
+        if replay.poll() is None:
+            replay.kill()
+    assert replay.returncode == 0, err
+    assert early == [], "commands sent before the simulation said it had matched them"
+    probe.spin_until(lambda: len(received) == 8, 10.0, "the 8 commands")
+    assert "replayed 8 commands" in err
+
+
+def test_a_lockstep_run_says_which_replayer_topics_it_has_matched(boatsim, probe, tmp_path):
+    from rosgraph_msgs.msg import Clock
+    from std_msgs.msg import Float64MultiArray, String
+
+    from boat_msgs_py import names
+    from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
+
+    words = []
+    probe.node.create_subscription(String, names.LOCKSTEP_READY,
+                                   lambda m: words.append(m.data), COMMAND_QOS)
+    replayer = probe.other_node(names.REPLAY_NODE)
+    replayer.create_publisher(Float64, "/cmd_thrust", COMMAND_QOS)
+    probe.node.create_publisher(Float64, "/cmd_rudder", COMMAND_QOS)  # not the replayer's
+    sim = boatsim("run", "--fast", "--lockstep", "--record", str(tmp_path / "bag"))
+    probe.spin_until(lambda: words, 60.0, names.LOCKSTEP_READY)
+    assert set(words) == {f"{names.DYNAMICS_NODE} /cmd_thrust"}
+    # a grant of 30 s: the run's recorder looks for new topics while it steps (every second
+    # of wall time), then the run holds at t = 30 s and says its word again
+    clock = []
+    probe.node.create_subscription(Clock, names.CLOCK, lambda m: clock.append(m.clock.sec),
+                                   CLOCK_QOS)
+    grant = replayer.create_publisher(Float64MultiArray, names.LOCKSTEP, COMMAND_QOS)
+    grant.publish(Float64MultiArray(data=[30.0, 0.0]))
+    probe.spin_until(lambda: clock and clock[-1] >= 30, 120.0, "the simulation at t = 30 s")
+    count = len(words)
+    probe.spin_until(lambda: len(words) > count + 3, 30.0, "the word said at t = 30 s")
+    assert sim.stop() == 0
+    # said on the wall clock, it is protocol: not recorded (two identical runs would differ)
+    topics = read_bag_topics(tmp_path / "bag")
+    assert names.LOCKSTEP_READY not in topics, topics
 
 
 def test_replay_without_a_simulation_or_commands_exits_2(tmp_path):

@@ -27,7 +27,7 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
-from std_msgs.msg import Float64, Float64MultiArray
+from std_msgs.msg import Float64, Float64MultiArray, String
 
 from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.boat import BoatState, reference_pose
@@ -254,10 +254,14 @@ class DynamicsNode(Node):
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
         self._lockstep_sub = None  # before the boats' command subscriptions (see lockstep)
+        self._ready_pub = None  # lockstep: the word that the replayer's commands will arrive
+        self._replay_topics: set[str] = set()  # the replayer's, seen at the last announcement
+        self._next_announcement = 0.0
         if lockstep != "none":
             self._lockstep_sub = self.create_subscription(
                 Float64MultiArray, names.LOCKSTEP,
                 self._on_lockstep if lockstep == "follow" else lambda msg: None, COMMAND_QOS)
+            self._ready_pub = self.create_publisher(String, names.LOCKSTEP_READY, COMMAND_QOS)
         self.boats = []
         for i, spec in enumerate(scenario.boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
@@ -530,6 +534,32 @@ class DynamicsNode(Node):
         if len(msg.data) >= 2:
             self.granted_until = max(self.granted_until, float(msg.data[0]))
             self.granted_commands = max(self.granted_commands, int(msg.data[1]))
+
+    def announce_matches(self) -> None:
+        """Lockstep, while holding: say which of the replayer's topics the boats have matched.
+
+        On ``names.LOCKSTEP_READY``, at most every 0.1 s (wall).
+        A topic counts once this node's graph has shown the replayer publishing it at two
+        announcements in a row: DDS matches a subscription to a publisher as it learns of the
+        publisher, which the graph shows, and the second look leaves 0.1 s for that. (A
+        publisher that has matched a subscription may still be unknown to the subscription,
+        and what it publishes meanwhile is lost; the replayer saw its subscribers and sent at
+        once, and a lockstep simulation then waited for a lost command for ever.)
+        """
+        now = time.monotonic()
+        if self._ready_pub is None or now < self._next_announcement:
+            return
+        self._next_announcement = now + 0.1
+        seen = set()
+        if (names.REPLAY_NODE, "/") in self.get_node_names_and_namespaces():
+            try:
+                published = self.get_publisher_names_and_types_by_node(names.REPLAY_NODE, "/")
+            except RuntimeError:  # NodeNameNonExistentError: it left between the two calls
+                published = []
+            seen = {topic for topic, _ in published} & self._command_topics
+        matched, self._replay_topics = seen & self._replay_topics, seen
+        if matched:
+            self._ready_pub.publish(String(data=" ".join([self.get_name(), *sorted(matched)])))
 
     def repeat_clock(self) -> None:
         """Republish /clock at the current time (lockstep hold: late joiners see it), unrecorded."""

@@ -288,8 +288,10 @@ def _dynamics_name(scenario: Scenario, options: RunOptions) -> str:
     return f"{names.DYNAMICS_NODE}_shard_{options.shard[0]}"
 
 
-#: The step barrier's protocol, not recorded (as /boatsim/lockstep, it is no simulation data).
-_BARRIER_TOPICS = frozenset({names.STEP_GRANT, names.STEP_DONE})
+#: The step barrier's protocol and a lockstep node's word to the replayer, not recorded (as
+#: /boatsim/lockstep, it is no simulation data; how often the word is said depends on the
+#: wall clock, and two identical runs would record different bags).
+_BARRIER_TOPICS = frozenset({names.STEP_GRANT, names.STEP_DONE, names.LOCKSTEP_READY})
 #: Topics every node has or that only the clock owner's recorder records.
 _NOT_SHARDS = frozenset({names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP})
 
@@ -635,13 +637,18 @@ class _Loop:
         A shard waits for the step barrier; a lockstep run for the replayer.
         """
         if self.member is not None:
+            def serve() -> None:
+                self._serve_callbacks(wall0)
+                self.dynamics.announce_matches()  # a lockstep shard's word to the replayer
+
             return self.member.wait(self.clock.steps, lambda: self.dynamics.commands_received,
-                                    self.stop, lambda: self._serve_callbacks(wall0))
+                                    self.stop, serve)
         if not self.options.lockstep or self.dynamics is None:
             return True
         next_repeat = time.monotonic() + 0.1
         while not self.dynamics.may_step() and not self.stop.is_set():
             self.executor.spin_once(timeout_sec=0.01)
+            self.dynamics.announce_matches()
             if time.monotonic() >= next_repeat:
                 self.dynamics.repeat_clock()
                 next_repeat = time.monotonic() + 0.1

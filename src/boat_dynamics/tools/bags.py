@@ -35,8 +35,10 @@ __all__ = [
 DEFAULT_TOLERANCE = 1e-9
 
 #: Topics left out of a comparison unless asked for: logs and parameter events carry wall
-#: time and process ids, never equal between two runs; lockstep grants are protocol.
-UNCOMPARED_TOPICS = (names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP)
+#: time and process ids, never equal between two runs; lockstep grants and a lockstep node's
+#: word to the replayer are protocol.
+UNCOMPARED_TOPICS = (names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP,
+                     names.LOCKSTEP_READY)
 
 
 class BagError(ValueError):

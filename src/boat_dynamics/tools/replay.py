@@ -8,9 +8,12 @@ Against ``boatsim run --fast --lockstep`` the replay is in lockstep: before comm
 t_i) it grants "advance while t < t_i" on /boatsim/lockstep, waits on /clock until the
 simulation holds at t_i, publishes the command, and grants the next time together with the
 number of commands sent, so the simulation never steps past a command it has not received.
-Each command then takes effect at the same step on a fast or a slow machine. Against a
-real-time simulation the commands are published on the wall clock (times divided by
-``rate``).
+Each command then takes effect at the same step on a fast or a slow machine. Before the first
+command it waits for every dynamics node subscribing to its command topics to say, on
+/boatsim/lockstep_ready, that those subscriptions have matched its publishers (DDS loses what
+is published before), and it repeats the current grant every 0.1 s while it waits (a grant is
+"at most": the followers keep the largest). Against a real-time simulation the commands are
+published on the wall clock (times divided by ``rate``).
 """
 
 from __future__ import annotations
@@ -23,9 +26,12 @@ from pathlib import Path
 from boat_dynamics.tools.bags import BagError, read_bag, read_bag_topics
 from boat_msgs_py import names
 
-__all__ = ["Command", "ReplayError", "command_schedule", "follows_lockstep", "replay"]
+__all__ = ["Command", "ReplayError", "command_schedule", "follows_lockstep", "parse_ready",
+           "replay", "unannounced"]
 
 _FOREVER = 1e18  # the last grant: run on to the end
+#: s (wall) between two copies of the current grant while the replayer waits on /clock.
+_GRANT_REPEAT = 0.1
 #: s (wall) a replayer that has found the commands' subscribers waits for a lockstep follower
 #: before it replays on the wall clock (a real-time simulation has none).
 _FOLLOWER_GRACE = 2.0
@@ -41,6 +47,27 @@ def follows_lockstep(node_name: str) -> bool:
     until --timeout and failed, where a real-time run wants the wall clock.
     """
     return node_name.startswith(names.DYNAMICS_NODE) or node_name == names.CLOCK_NODE
+
+
+def parse_ready(text: str) -> tuple[str, set[str]]:
+    """A /boatsim/lockstep_ready message: (the node's name, the topics it has matched)."""
+    node, *topics = text.split()
+    return node, set(topics)
+
+
+def unannounced(subscribers: dict[str, set[str]], ready: dict[str, set[str]]
+                ) -> list[tuple[str, str]]:
+    """The (node, topic) pairs whose match a lockstep node has not announced yet.
+
+    Args:
+        subscribers: per command topic, the names of the nodes subscribing to it (the graph).
+        ready: per node, the topics it last announced on /boatsim/lockstep_ready.
+
+    Only boatsim's dynamics nodes (:func:`follows_lockstep`) answer; another subscriber (a
+    recorder, a user's node) is not waited for.
+    """
+    return sorted((node, topic) for topic, nodes in subscribers.items() for node in nodes
+                  if follows_lockstep(node) and topic not in ready.get(node, set()))
 
 
 class ReplayError(RuntimeError):
@@ -97,7 +124,7 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rosgraph_msgs.msg import Clock
-    from std_msgs.msg import Float64, Float64MultiArray
+    from std_msgs.msg import Float64, Float64MultiArray, String
 
     from boat_msgs_py.convert import time_to_seconds
     from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
@@ -105,7 +132,7 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
     schedule = command_schedule(bag, topics)
     context = rclpy.Context()
     rclpy.init(context=context)
-    node = rclpy.create_node("boatsim_replay", context=context)
+    node = rclpy.create_node(names.REPLAY_NODE, context=context)
     executor = SingleThreadedExecutor(context=context)
     executor.add_node(node)
     clock = [math.nan]
@@ -114,13 +141,23 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
     pubs = {t: node.create_publisher(Float64, t, COMMAND_QOS)
             for t in sorted({c.topic for c in schedule})}
     grant = node.create_publisher(Float64MultiArray, names.LOCKSTEP, COMMAND_QOS)
+    ready: dict[str, set[str]] = {}  # node -> the command topics it has matched
+
+    def on_ready(msg: String) -> None:
+        if msg.data.strip():
+            name, topics = parse_ready(msg.data)
+            ready[name] = topics
+
+    node.create_subscription(String, names.LOCKSTEP_READY, on_ready, COMMAND_QOS)
     log = node.get_logger()
 
-    def spin_until(condition, what: str) -> None:
+    def spin_until(condition, what) -> None:
+        # what: the awaited thing, or a callable giving it (said as it stands at the time-out)
         deadline = time.monotonic() + timeout
         while not condition():
             if time.monotonic() > deadline:
                 where = "" if math.isnan(clock[0]) else f" (its /clock: t = {clock[0]:.3f} s)"
+                what = what() if callable(what) else what
                 raise ReplayError(f"timed out after {timeout:g} s waiting for {what}{where}")
             executor.spin_once(timeout_sec=0.01)
 
@@ -133,6 +170,11 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         found = {i.node_name for i in node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
         unnamed = bool(found & {"", names.UNKNOWN_NODE})
         return {n for n in found if follows_lockstep(n)}, unnamed
+
+    def waiting_for() -> list[tuple[str, str]]:
+        subscribers = {t: {i.node_name for i in node.get_subscriptions_info_by_topic(t)}
+                       for t in pubs}
+        return unannounced(subscribers, ready)
 
     def lockstep_found() -> bool:
         # A lockstep simulation subscribes to /boatsim/lockstep before its command topics
@@ -155,6 +197,10 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         if lockstep:
             spin_until(lambda: not math.isnan(clock[0]),
                        f"/clock from the lockstep simulation ({', '.join(sorted(followers()[0]))})")
+            spin_until(lambda: not waiting_for(), lambda: (
+                "the simulation's word that its subscriptions have matched the replayer's "
+                f"publishers ({names.LOCKSTEP_READY}; still missing: "
+                f"{', '.join(f'{n} {t}' for n, t in waiting_for()[:4])})"))
         log.info(f"replaying {len(schedule)} commands from {bag} "
                  f"({'lockstep with /clock' if lockstep else f'wall clock x{rate:g}'})")
         sent = _send(schedule, pubs, grant if lockstep else None, clock, rate, spin_until)
@@ -187,8 +233,8 @@ def _send(schedule: list[Command], pubs: dict, grant, clock: list[float], rate: 
     start = time.monotonic()
     for command in schedule:
         if grant is not None:
-            grant.publish(Float64MultiArray(data=[command.t, float(sent)]))
-            spin_until(lambda t=command.t: clock[0] >= t - 1e-9,
+            spin_until(_granting(grant, Float64MultiArray(data=[command.t, float(sent)]),
+                                 lambda t=command.t: clock[0] >= t - 1e-9),
                        f"the simulation to reach t = {command.t:.3f} s")
         else:
             spin_until(lambda t=command.t: (time.monotonic() - start) * rate >= t,
@@ -198,3 +244,23 @@ def _send(schedule: list[Command], pubs: dict, grant, clock: list[float], rate: 
     if grant is not None:
         grant.publish(Float64MultiArray(data=[_FOREVER, float(sent)]))
     return sent
+
+
+def _granting(grant, message, reached):
+    """A condition that publishes ``message`` now and again every _GRANT_REPEAT s till it holds.
+
+    ``reached()`` is the condition itself. A grant lost to a follower that had not matched the
+    replayer yet is given again (a follower keeps the largest grant: copies change nothing).
+    """
+    grant.publish(message)
+    due = [time.monotonic() + _GRANT_REPEAT]
+
+    def condition() -> bool:
+        if reached():
+            return True
+        if time.monotonic() >= due[0]:
+            grant.publish(message)
+            due[0] = time.monotonic() + _GRANT_REPEAT
+        return False
+
+    return condition
