@@ -238,6 +238,23 @@ def test_a_replay_against_a_real_time_run_follows_the_wall_clock(boatsim, probe,
     assert counts == {"/cmd_thrust": 5, "/cmd_rudder": 3}
 
 
+def _hold_at_grants(probe, replay, grants, clock, each_round=lambda: None) -> str:
+    """A stand-in lockstep simulation: /clock at the last grant's time until the replayer
+    exits (``each_round`` called every 20 ms); returns the replayer's stderr."""
+    from rosgraph_msgs.msg import Clock
+
+    from boat_msgs_py.convert import seconds_to_time
+
+    t = 0.0
+    while replay.poll() is None:  # the simulation holds at each grant's time
+        each_round()
+        if grants and grants[-1][0] < 1e17:
+            t = max(t, grants[-1][0])
+        clock.publish(Clock(clock=seconds_to_time(t)))
+        probe.spin_for(0.02)
+    return replay.stderr.read()
+
+
 def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(probe, tmp_path):
     # A stand-in for a loaded machine's `run --fast --lockstep`: it follows /boatsim/lockstep
     # at once but publishes /clock only after 3 s (wall). The replayer used to give /clock 2 s,
@@ -246,7 +263,6 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
     from std_msgs.msg import Float64MultiArray
 
     from boat_msgs_py import names
-    from boat_msgs_py.convert import seconds_to_time
     from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
 
     _command_bag(tmp_path / "commands")
@@ -263,13 +279,7 @@ def test_a_lockstep_simulation_whose_clock_comes_late_is_replayed_in_lockstep(pr
         probe.spin_until(lambda: node.count_publishers(names.LOCKSTEP) > 0, 30.0,
                          "the replayer")
         probe.spin_for(3.0)  # from when the replayer is there
-        t = 0.0
-        while replay.poll() is None:  # the simulation holds at each grant's time
-            if grants and grants[-1][0] < 1e17:
-                t = max(t, grants[-1][0])
-            clock.publish(Clock(clock=seconds_to_time(t)))
-            probe.spin_for(0.02)
-        err = replay.stderr.read()
+        err = _hold_at_grants(probe, replay, grants, clock)
     finally:
         if replay.poll() is None:
             replay.kill()
@@ -289,7 +299,6 @@ def test_a_replay_sends_no_command_before_the_simulation_has_matched_its_publish
     from std_msgs.msg import Float64MultiArray, String
 
     from boat_msgs_py import names
-    from boat_msgs_py.convert import seconds_to_time
     from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
 
     _command_bag(tmp_path / "commands")
@@ -309,17 +318,14 @@ def test_a_replay_sends_no_command_before_the_simulation_has_matched_its_publish
                                str(tmp_path / "commands")], stderr=subprocess.PIPE, text=True)
     try:
         probe.spin_until(lambda: sim.count_publishers(names.LOCKSTEP) > 0, 30.0, "the replayer")
-        t, start = 0.0, time.monotonic()
-        while replay.poll() is None:  # the simulation holds at each grant's time
-            if not matched[0] and time.monotonic() - start > 3.0:
-                matched[0] = True
+        start = time.monotonic()
+
+        def match_late():
+            matched[0] = matched[0] or time.monotonic() - start > 3.0
             if matched[0]:
                 ready.publish(String(data=f"{names.DYNAMICS_NODE} /cmd_rudder /cmd_thrust"))
-            if grants and grants[-1][0] < 1e17:
-                t = max(t, grants[-1][0])
-            clock.publish(Clock(clock=seconds_to_time(t)))
-            probe.spin_for(0.02)
-        err = replay.stderr.read()
+
+        err = _hold_at_grants(probe, replay, grants, clock, match_late)
     finally:
         if replay.poll() is None:
             replay.kill()
