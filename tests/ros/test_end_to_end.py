@@ -374,6 +374,42 @@ def test_several_boats_each_in_its_namespace(boatsim, probe):
     assert "boat charlie: scripted commands; ignoring command topics" in sim.output()
 
 
+def test_a_real_time_run_behind_the_wall_clock_still_takes_commands_and_calls(
+        boatsim, probe, tmp_path):
+    # 20 boats stepped at 10 kHz: several times more than a laptop steps in real time (0.37 ms
+    # a step on the faster reference machine, 0.1 ms allowed). Behind the wall clock, the
+    # run steps on to catch up; it used to serve no callbacks meanwhile, so commands and
+    # parameter calls waited for ever (seen with both cores busy: `param list` of a 3-boat
+    # real-time run had no answer within 20 s).
+    from rcl_interfaces.srv import GetParameters
+
+    boats = "\n".join(f"  - {{name: b{i}, initial_pose: {{position: [{12 * i}.0, 0.0, 0.0]}}}}"
+                      for i in range(20))
+    (tmp_path / "busy.yaml").write_text(f"simulation: {{rate_hz: 10000}}\nboats:\n{boats}\n")
+    sim = boatsim("run", str(tmp_path / "busy.yaml"))
+    counts = {}
+
+    def on_diagnostics(msg):
+        counts.update({s.name: kv.value for s in msg.status for kv in s.values
+                       if kv.key == "commands_received"})
+
+    probe.node.create_subscription(DiagnosticArray, "/diagnostics", on_diagnostics, 10)
+    probe.spin_until(lambda: counts, 120.0, "/diagnostics")
+    get = probe.node.create_client(GetParameters, "/boat_dynamics/get_parameters")
+    answer = probe.call(get, GetParameters.Request(names=["cmd_timeout"]), timeout=30.0)
+    assert answer.values[0].double_value == 1.0
+    thrust = probe.node.create_publisher(Float64, "/b3/cmd_thrust", 10)
+    probe.spin_until(lambda: thrust.get_subscription_count() > 0, 30.0, "the subscription")
+    thrust.publish(Float64(data=0.5))
+    probe.spin_until(lambda: any(v == "1" for n, v in counts.items() if "b3" in n), 30.0,
+                     "the command counted on /diagnostics")
+    probe.spin_until(lambda: re.search(r"t\s+[\d.]+ s\s+x", sim.output()), 30.0,
+                     "a status line")
+    assert sim.stop() == 0
+    factors = [float(f) for f in re.findall(r"t\s+[\d.]+ s\s+x\s*([\d.]+)", sim.output())]
+    assert factors and max(factors) < 0.5, factors  # it was behind: what this test is about
+
+
 def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
     sim = boatsim("run", "scenarios/multi_boat.yaml", "--processes", "--duration", "8")
     odoms = {name: [] for name in ("alpha", "bravo", "charlie")}
@@ -386,12 +422,13 @@ def test_processes_runs_each_node_in_its_own_process(boatsim, probe):
     probe.spin_until(
         lambda: expected <= {n for n, _ in probe.node.get_node_names_and_namespaces()},
         20.0, f"node names {sorted(expected)}")
-    # one clock: every process's stamps lie on the same 20 ms grid from the shared epoch, and
-    # the processes keep up with each other (loosely: a loaded machine delays one a little)
+    # one clock: every process's stamps lie on the same 20 ms grid from the shared epoch.
+    # (How far apart the processes are at a moment is the wall clock's business: with both
+    # cores busy one was 1.3 s behind; a real-time process behind the wall clock steps on to
+    # catch up, and every one ends at the duration.)
     stamps = [time_to_seconds(b[-1].header.stamp) for b in odoms.values()]
     steps = [(s - stamps[0]) / 0.02 for s in stamps]
     assert all(abs(k - round(k)) < 1e-3 for k in steps), steps
-    assert max(stamps) - min(stamps) < 1.0
     assert sim.wait(timeout=60) == 0
     out = sim.output()
     assert "started 4 processes" in out and "Traceback" not in out
@@ -478,7 +515,10 @@ def test_processes_children_die_with_the_parent(boatsim, probe):
     probe.spin_until(lambda: len(odoms) > 10, 30.0, "/odom")
     pids = _pids(sim)
     sim.stop(signal.SIGKILL)  # the parent only: no chance to stop its children itself
-    probe.spin_until(lambda: all(_gone(pid) for pid in pids), 5.0, "the children's exit")
+    # each child gets SIGTERM from the kernel and stops as at Ctrl-C: its last step, its bag,
+    # its nodes: 2.0-2.3 s idle, 1.3-1.6 s with both cores busy (3 runs each), once more
+    # than 5 s with more than two other processes busy
+    probe.spin_until(lambda: all(_gone(pid) for pid in pids), 20.0, "the children's exit")
 
 
 def test_processes_ctrl_c_stops_every_child(boatsim, probe):

@@ -63,17 +63,18 @@ _LOG_STATUS_PERIOD = 5.0
 _TYPE_CHECK_PERIOD = 2.0
 #: Wall-clock period of topic discovery for the recorder, s.
 _DISCOVERY_PERIOD = 1.0
-#: In --fast mode, serve ROS callbacks (commands, service calls) at most this often, s (wall).
+#: In --fast mode (and in real time while behind the wall clock), serve ROS callbacks
+#: (commands, service calls) at most this often, s (wall).
 #: rclpy rebuilds its wait set on every spin (about 5 ms with 10 boats' entities, measured),
 #: so spinning after every physics step cost as much as the physics.
 _FAST_SPIN_PERIOD = 0.05
-#: A shard with a checkpoint saves its boats this often, s of simulation time.
-CHECKPOINT_PERIOD = 1.0
 #: ... and spend at most this fraction of the wall time on it: the wait set grows with the
 #: boats (2 command subscriptions each), and with 100 boats a spin took 4 ms per 10 ms step,
 #: more than the physics. With more boats, callbacks are then served less often than every
 #: _FAST_SPIN_PERIOD (0.2 s of wall time with 100 boats).
 _FAST_SPIN_SHARE = 0.1
+#: A shard with a checkpoint saves its boats this often, s of simulation time.
+CHECKPOINT_PERIOD = 1.0
 
 
 @dataclass(frozen=True)
@@ -353,7 +354,8 @@ class _Loop:
         self.participants = Participants()  # the nodes' participants but the default one
         self.dds_note: str | None = None  # why boatsim's Fast DDS profile is not in use
         self.advertise_wrenches = True  # every wrench/<source> publisher from the start
-        self._next_spin = 0.0  # fast mode: wall time (monotonic) of the next callback round
+        # fast mode, or real time behind the wall clock: the next callback round (monotonic)
+        self._next_spin = 0.0
 
     def _make_nodes(self) -> None:
         """The dynamics and/or ocean node of this process's role, and the recorder."""
@@ -657,21 +659,25 @@ class _Loop:
     def _serve_callbacks(self, wall0: float) -> None:
         """Serve ROS callbacks after a step.
 
-        All ready ones (lockstep); at most _FAST_SPIN_SHARE of the wall time (fast); or until
-        the next step is due on the wall clock (real time).
+        All ready ones (lockstep); at most _FAST_SPIN_SHARE of the wall time (fast, and a
+        real-time run behind the wall clock, which steps on to catch up); or until the next
+        step is due on the wall clock (real time). (A real-time run behind the wall clock
+        used to serve none: on a busy machine, or with a fleet too large for it, commands and
+        parameter calls waited until it caught up, which it might never do.)
         """
         if self.fast and self.options.lockstep:
             _spin_pending(self.executor)
-        elif self.fast:
+            return
+        step_due = wall0 + self.clock.t
+        if self.fast or step_due <= time.time():
             if (now := time.monotonic()) >= self._next_spin:
                 _spin_pending(self.executor)
                 spent = time.monotonic() - now
                 self._next_spin = now + spent + max(_FAST_SPIN_PERIOD,
                                                     spent / _FAST_SPIN_SHARE)
-        else:
-            step_due = wall0 + self.clock.t
-            while (remaining := step_due - time.time()) > 0 and not self.stop.is_set():
-                self.executor.spin_once(timeout_sec=remaining)
+            return
+        while (remaining := step_due - time.time()) > 0 and not self.stop.is_set():
+            self.executor.spin_once(timeout_sec=remaining)
 
     def close(self, status: TextIO) -> None:
         """Finalize the bag, destroy the nodes, stop the executor."""
