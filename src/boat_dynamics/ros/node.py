@@ -550,13 +550,11 @@ class DynamicsNode(Node):
         if self._ready_pub is None or now < self._next_announcement:
             return
         self._next_announcement = now + 0.1
-        seen = set()
-        if (names.REPLAY_NODE, "/") in self.get_node_names_and_namespaces():
-            try:
-                published = self.get_publisher_names_and_types_by_node(names.REPLAY_NODE, "/")
-            except RuntimeError:  # NodeNameNonExistentError: it left between the two calls
-                published = []
-            seen = {topic for topic, _ in published} & self._command_topics
+        try:
+            published = self.get_publisher_names_and_types_by_node(names.REPLAY_NODE, "/")
+        except RuntimeError:  # NodeNameNonExistentError: no replayer on the graph
+            published = []
+        seen = {topic for topic, _ in published} & self._command_topics
         matched, self._replay_topics = seen & self._replay_topics, seen
         if matched:
             self._ready_pub.publish(String(data=" ".join([self.get_name(), *sorted(matched)])))

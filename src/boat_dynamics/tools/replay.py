@@ -253,14 +253,15 @@ def _granting(grant, message, reached):
     replayer yet is given again (a follower keeps the largest grant: copies change nothing).
     """
     grant.publish(message)
-    due = [time.monotonic() + _GRANT_REPEAT]
+    due = time.monotonic() + _GRANT_REPEAT
 
     def condition() -> bool:
+        nonlocal due
         if reached():
             return True
-        if time.monotonic() >= due[0]:
+        if time.monotonic() >= due:
             grant.publish(message)
-            due[0] = time.monotonic() + _GRANT_REPEAT
+            due = time.monotonic() + _GRANT_REPEAT
         return False
 
     return condition
