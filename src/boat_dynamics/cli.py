@@ -17,7 +17,7 @@ from pathlib import Path
 # 60-component surface query 1.6x slower on the 2-core reference machine (benchmarks/run.py).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from boat_dynamics.process import keep_freed_memory
+from boat_dynamics.process import keep_freed_memory, stop_on_signals
 
 keep_freed_memory()
 
@@ -309,7 +309,6 @@ def _add_view(verbs) -> None:
 
 
 def _view(args: argparse.Namespace) -> int:
-    import signal
     import threading
 
     from boat_dynamics.tools.bags import BagError
@@ -324,8 +323,7 @@ def _view(args: argparse.Namespace) -> int:
                           sea_size=args.sea_size, sea_resolution=args.sea_resolution,
                           duration=args.duration)
     stop = threading.Event()
-    previous = {sig: signal.signal(sig, lambda *_: stop.set())
-                for sig in (signal.SIGINT, signal.SIGTERM)}
+    restore_signals = stop_on_signals(stop)
     try:
         if args.bag:
             return view_bag(args.bag, options, stop=stop)
@@ -334,8 +332,7 @@ def _view(args: argparse.Namespace) -> int:
         print(f"boatsim view: error: {exc}", file=sys.stderr)
         return 2
     finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
+        restore_signals()
 
 
 def _add_rao(verbs) -> None:

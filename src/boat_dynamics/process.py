@@ -21,8 +21,8 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-__all__ = ["SharedTime", "die_with_parent", "keep_freed_memory", "start_child",
-           "stop_processes", "watch_stdin"]
+__all__ = ["STOP_SIGNALS", "SharedTime", "die_with_parent", "keep_freed_memory", "start_child",
+           "stop_on_signals", "stop_processes", "watch_stdin"]
 
 #: prctl option: the signal a process gets when its parent dies (linux/prctl.h).
 _PR_SET_PDEATHSIG = 1
@@ -56,6 +56,55 @@ def watch_stdin(stop: threading.Event, on_line: Callable[[str], None] | None = N
         stop.set()
 
     threading.Thread(target=listen, daemon=True, name="boatsim-stdin").start()
+
+
+#: The signals that end a run cleanly: Ctrl-C, and ``kill`` (or a parent's death, see
+#: :func:`die_with_parent`).
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+def stop_on_signals(stop: threading.Event,
+                    signals: Sequence[int] = STOP_SIGNALS) -> Callable[[], None]:
+    """In the main thread: set ``stop`` when one of ``signals`` arrives.
+
+    A Python signal handler runs in the main thread between two bytecodes, so it can
+    interrupt anything, an earlier handler included. A handler calling ``stop.set()`` can
+    interrupt another's ``stop.set()`` while that one holds the event's lock, which is not
+    re-entrant: the process then sleeps for ever (seen: a ``--processes`` child asleep 1.5 h
+    after its parent died, when three SIGTERMs came close together). So the handler takes no
+    lock: it writes a byte to a pipe, and a thread reading the pipe sets ``stop``.
+
+    Args:
+        stop: the event to set.
+        signals: the signal numbers to catch.
+
+    Returns:
+        A function that puts the previous handlers back and ends the thread (call it from the
+        main thread, once).
+    """
+    read, write = os.pipe()
+    os.set_blocking(write, False)
+
+    def handler(signum: int, frame: object) -> None:
+        try:
+            os.write(write, b"\0")
+        except OSError:  # the pipe is full: a stop is already on its way
+            pass
+
+    def relay() -> None:
+        while os.read(read, 64):  # b"" once restore() has closed the other end
+            stop.set()
+        os.close(read)
+
+    previous = {sig: signal.signal(sig, handler) for sig in signals}
+    threading.Thread(target=relay, daemon=True, name="boatsim-signals").start()
+
+    def restore() -> None:
+        for sig, old in previous.items():
+            signal.signal(sig, old)
+        os.close(write)  # no handler of ours can run any more: the fd may be reused
+
+    return restore
 
 
 def stop_processes(processes: Sequence[subprocess.Popen], sig: int = signal.SIGINT,

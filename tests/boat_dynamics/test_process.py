@@ -1,10 +1,15 @@
-"""Process tuning: applied on this Linux/glibc machine, harmless to call twice."""
+"""Process settings: memory tuning (applied on this Linux/glibc machine, harmless to call
+twice), and signal handlers that cannot deadlock."""
 
 import ctypes
+import os
+import signal
 import subprocess
 import sys
+import textwrap
+import threading
 
-from boat_dynamics.process import MMAP_THRESHOLD, keep_freed_memory
+from boat_dynamics.process import MMAP_THRESHOLD, keep_freed_memory, stop_on_signals
 
 
 def test_freed_memory_is_kept_on_glibc():
@@ -33,3 +38,80 @@ def test_boatsim_reuses_freed_memory():
     # faults every page in again (1e5 faults measured); boatsim keeps them
     assert _page_faults("pass") > 20_000
     assert _page_faults("import boat_dynamics.cli") < 1_000
+
+
+def _python(code: str, stdin: int | None = None) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-c", textwrap.dedent(code)], stdin=stdin,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def _outcome(process: subprocess.Popen, timeout: float = 60.0) -> str:
+    """The process's stdout once it ends, or "hung" (then it is killed)."""
+    try:
+        out, err = process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.communicate()
+        return "hung"
+    assert process.returncode == 0, err
+    return out
+
+
+def test_a_stop_signal_that_interrupts_the_events_own_lock_does_not_deadlock():
+    # A Python handler runs between two bytecodes of the main thread, for instance inside an
+    # earlier handler's Event.set, while the event's (not re-entrant) lock is held. Holding
+    # that lock and raising the signal puts the handler exactly there. A handler calling
+    # stop.set() blocks for ever at this point (measured: the old lambda hangs).
+    process = _python("""
+        import signal, threading
+        from boat_dynamics.process import stop_on_signals
+        stop = threading.Event()
+        restore = stop_on_signals(stop)
+        with stop._cond:  # the lock Event.set holds
+            signal.raise_signal(signal.SIGTERM)
+            signal.raise_signal(signal.SIGINT)
+            print("handlers returned", stop.is_set())
+        print("stop set", stop.wait(30))
+        restore()
+    """)
+    # the relay sets stop once the lock is free, not before
+    assert _outcome(process).split("\n")[:2] == ["handlers returned False", "stop set True"]
+
+
+def test_a_burst_of_stop_signals_ends_the_process():
+    # The deadlock as seen: a --processes child (stop on SIGINT/SIGTERM or on stdin's end)
+    # that gets several SIGTERMs close together. With handlers calling stop.set(), this
+    # burst hung 17 child processes in 20.
+    for _ in range(3):
+        process = _python("""
+            import threading
+            from boat_dynamics.process import stop_on_signals, watch_stdin
+            stop = threading.Event()
+            restore = stop_on_signals(stop)
+            watch_stdin(stop)
+            print("ready", flush=True)
+            while not stop.is_set():
+                pass
+            restore()
+            print("stopped")
+        """, stdin=subprocess.PIPE)
+        assert process.stdout.readline() == "ready\n"
+        for _ in range(200):
+            process.send_signal(signal.SIGTERM)
+        assert _outcome(process) == "stopped\n"  # (communicate closes its stdin)
+
+
+def test_stop_on_signals_puts_back_the_previous_handlers_and_leaves_no_thread_or_fd():
+    before = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    fds = set(os.listdir("/proc/self/fd"))
+    stop = threading.Event()
+    restore = stop_on_signals(stop)
+    assert signal.getsignal(signal.SIGTERM) is not before[signal.SIGTERM]
+    signal.raise_signal(signal.SIGINT)
+    assert stop.wait(30)
+    relay = next(t for t in threading.enumerate() if t.name == "boatsim-signals")
+    restore()
+    relay.join(30)
+    assert not relay.is_alive()
+    assert {sig: signal.getsignal(sig) for sig in before} == before
+    assert set(os.listdir("/proc/self/fd")) == fds

@@ -3,7 +3,9 @@
 Every test here runs on a ROS_DOMAIN_ID of its own (from the pytest process id and the
 test's place in the run: a process a test SIGKILLed stays listed on its domain for the DDS
 lease, 20 s, and a client of the next test could send its request to that ghost only) with
-ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, and stops every process it starts.
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, and stops every process it starts: at its end, any
+process still carrying its BOATSIM_TEST_TAG (a child of a killed parent, for instance) is
+given 20 s and then killed, with a warning.
 """
 
 import itertools
@@ -12,12 +14,26 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-DOMAIN_ID = str(30 + os.getpid() % 70)
+#: pytest-xdist's worker (gw0, gw1, ...) and their number: each worker has its own share of
+#: the domains below, so two tests running at once never share one.
+_WORKER = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw"))
+_WORKERS = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+
+
+def _domain(first: int, count: int, i: int) -> int:
+    """The ``i``-th domain of this worker's share of ``first .. first + count - 1``."""
+    span = count // _WORKERS
+    return first + _WORKER * span + i % span
+
+
+#: Before a test's own domain is set (module fixtures): domains 30-99.
+DOMAIN_ID = str(_domain(30, 70, os.getpid()))
 os.environ["ROS_DOMAIN_ID"] = DOMAIN_ID
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
 os.environ.pop("ROS_LOCALHOST_ONLY", None)
@@ -28,13 +44,49 @@ from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 pytestmark = pytest.mark.ros
 
 #: Domains 101-231 (each a few UDP ports on localhost), one per test in turn.
-_DOMAINS = (101 + (os.getpid() * 7 + i) % 131 for i in itertools.count())
+_DOMAINS = (_domain(101, 131, os.getpid() * 7 + i) for i in itertools.count())
+
+
+_TAGS = itertools.count()
+
+
+def _tagged(tag: str) -> list[int]:
+    """The processes whose environment holds ``BOATSIM_TEST_TAG=tag`` (zombies do not)."""
+    entry = f"BOATSIM_TEST_TAG={tag}".encode()
+    pids = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/environ", "rb") as environ:
+                if entry in environ.read().split(b"\0"):
+                    pids.append(int(pid))
+        except OSError:  # gone, or not ours
+            pass
+    return pids
 
 
 @pytest.fixture(autouse=True)
-def own_domain(monkeypatch):
-    """A ROS_DOMAIN_ID of the test's own for its processes and probe."""
+def own_domain(monkeypatch, request):
+    """A ROS_DOMAIN_ID of the test's own for its processes and probe; none left at its end.
+
+    Set up before the test's other fixtures, so torn down after them: the ``boatsim``
+    processes are stopped by then, and what is left was lost (a ``--processes`` child
+    outliving its killed parent once slept 1.5 h on the machine).
+    """
     monkeypatch.setenv("ROS_DOMAIN_ID", str(next(_DOMAINS)))
+    tag = f"{os.getpid()}-{next(_TAGS)}"
+    monkeypatch.setenv("BOATSIM_TEST_TAG", tag)
+    yield
+    end = time.monotonic() + 20.0
+    while (left := _tagged(tag)) and time.monotonic() < end:
+        time.sleep(0.1)
+    for pid in left:
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    if left:
+        warnings.warn(f"{request.node.name} left processes {left}: killed after 20 s",
+                      stacklevel=1)
 
 
 class Boatsim:

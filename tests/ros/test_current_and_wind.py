@@ -61,6 +61,11 @@ def test_a_current_set_at_run_time_carries_the_boat_and_bad_values_are_refused(
     # the current's 0.5 m/s north, plus the wind's push east: 8 m/s on 1 m^2 of frontal area
     # at c_x 0.7 against 2000 N s/m, about 0.014 m/s
     assert speed == pytest.approx(math.hypot(0.5, 0.014), abs=0.01)
+    # /wrench/wind is advertised once the graph shows the probe's subscription and sent once
+    # they have matched (each looked at every 1 s of wall time): in --fast mode 30 s of
+    # simulation may pass before that (a failure with two tests at once)
+    probe.spin_until(lambda: winds and stamp(winds[-1]) > t_set, 30.0,
+                     "/wrench/wind after the wind was set")
     assert winds[-1].wrench.force.x != 0.0
     assert sim.stop() == 0
     assert "new environment: current 0.5 m/s toward 90 deg" in sim.output()

@@ -29,7 +29,13 @@ from boat_dynamics.physics.boat import reference_pose
 from boat_dynamics.physics.pipeline import init_scenario
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import SharedTime, start_child, stop_processes, watch_stdin
+from boat_dynamics.process import (
+    SharedTime,
+    start_child,
+    stop_on_signals,
+    stop_processes,
+    watch_stdin,
+)
 from boat_dynamics.ros.barrier import StepConductor, StepMember, shard_slice
 from boat_dynamics.ros.node import (
     DynamicsNode,
@@ -219,8 +225,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     bag = (BagWriter(options.record, exclude=set(options.exclude_topics)) if options.record
            else None)
     stop = threading.Event()
-    previous = {sig: signal.signal(sig, lambda *_: stop.set())
-                for sig in (signal.SIGINT, signal.SIGTERM)}
+    restore_signals = stop_on_signals(stop)
     parent = _Parent(stop) if options.supervised or options.ready_fd is not None else None
     dds_note = use_profile()  # before the process's first participant
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
@@ -239,8 +244,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         loop.close(status)
         loop.participants.shutdown()
         rclpy.try_shutdown()
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
+        restore_signals()
     if loop.abandoned:  # see _Loop.close: destroying the endpoints would take minutes
         sys.stdout.flush()
         sys.stderr.flush()

@@ -207,7 +207,6 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
     Raises:
         RecordError: the bag directory cannot be created.
     """
-    import signal
     import threading
     import time
 
@@ -215,10 +214,11 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.signals import SignalHandlerOptions
 
+    from boat_dynamics.process import stop_on_signals
+
     bag = BagWriter(out, exclude=exclude)
     stop = threading.Event()
-    previous = {sig: signal.signal(sig, lambda *_: stop.set())
-                for sig in (signal.SIGINT, signal.SIGTERM)}
+    restore_signals = stop_on_signals(stop)
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = rclpy.create_node(names.RECORDER_NODE)
     executor = SingleThreadedExecutor()
@@ -255,5 +255,4 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
         executor.shutdown(timeout_sec=0.1)
         node.destroy_node()
         rclpy.try_shutdown()
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
+        restore_signals()

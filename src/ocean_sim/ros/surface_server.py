@@ -19,7 +19,6 @@ Linux it also gets SIGTERM then).
 
 from __future__ import annotations
 
-import signal
 import threading
 from collections.abc import Callable
 
@@ -101,12 +100,10 @@ def serve(time_file: str) -> int:
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.signals import SignalHandlerOptions
 
+    from boat_dynamics.process import SharedTime, stop_on_signals, watch_stdin
+
     stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
-
-    from boat_dynamics.process import SharedTime, watch_stdin
-
+    restore_signals = stop_on_signals(stop)
     watch_stdin(stop)
 
     shared = SharedTime(time_file)
@@ -122,4 +119,5 @@ def serve(time_file: str) -> int:
         node.destroy_node()
         rclpy.try_shutdown()
         shared.close()
+        restore_signals()
     return 0
