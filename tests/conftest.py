@@ -9,4 +9,24 @@ with both cores busy, `test_scenario_fuzz.py -k structural` took 113 s, 21 s wit
 
 import os
 
+import pytest
+
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
+@pytest.fixture
+def ros_context(monkeypatch):
+    """An rclpy context of the test's own, on localhost and a domain of this process's own.
+
+    For nodes made in-process and fed their callbacks directly (no graph). Domains 10-29
+    (tests/ros uses 30-231, after this part of the suite).
+    """
+    import rclpy
+
+    monkeypatch.setenv("ROS_DOMAIN_ID", str(10 + os.getpid() % 20))
+    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    monkeypatch.delenv("ROS_LOCALHOST_ONLY", raising=False)
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    yield context
+    rclpy.try_shutdown(context=context)

@@ -61,8 +61,15 @@ def test_thrust_moves_the_boat_forward_and_rudder_turns_it_to_port(boatsim, prob
     assert odoms[-1].child_frame_id == "base_link"
     start = odoms[-1]
 
+    def stamp(odom):
+        return time_to_seconds(odom.header.stamp)
+
     def drive(throttle, angle, seconds):
-        for _ in range(round(seconds * 10)):
+        """Send the commands every 0.1 s (wall) for ``seconds`` of simulation time."""
+        until = stamp(odoms[-1]) + seconds
+        give_up = time.monotonic() + 20.0 * seconds  # a bound for failure, not a measure
+        while stamp(odoms[-1]) < until:
+            assert time.monotonic() < give_up, f"{seconds} s of simulation never passed"
             thrust.publish(Float64(data=throttle))
             rudder.publish(Float64(data=angle))
             probe.spin_for(0.1)
@@ -84,9 +91,8 @@ def test_thrust_moves_the_boat_forward_and_rudder_turns_it_to_port(boatsim, prob
     turned = math.remainder(_yaw(end) - _yaw(port), 2 * math.pi)
     assert turned < -math.radians(20), f"-0.3 rad turned {math.degrees(turned):.1f} deg"
     # the stream kept its rate: about 50 Hz over the run
-    span = time_to_seconds(end.header.stamp) - time_to_seconds(start.header.stamp)
-    received = [o for o in odoms if time_to_seconds(o.header.stamp) > time_to_seconds(
-        start.header.stamp)]
+    span = stamp(end) - stamp(start)
+    received = [o for o in odoms if stamp(o) > stamp(start)]
     assert len(received) / span == pytest.approx(50.0, rel=0.1)
     assert sim.stop() == 0
     assert "Traceback" not in sim.output()

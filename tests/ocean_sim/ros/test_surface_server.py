@@ -6,7 +6,6 @@ tests/ros/test_end_to_end.py and test_ocean_node.py).
 
 import numpy as np
 import pytest
-import rclpy
 from boat_msgs.srv import SampleSurface
 from geometry_msgs.msg import Point
 from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterValue
@@ -21,13 +20,10 @@ XY = np.array([[1.0, 2.0], [-7.5, 3.25]])
 
 
 @pytest.fixture
-def server():
-    context = rclpy.Context()
-    rclpy.init(context=context)
-    node = SurfaceServer(lambda: 42.25, context=context)
+def server(ros_context):
+    node = SurfaceServer(lambda: 42.25, context=ros_context)
     yield node
     node.destroy_node()
-    rclpy.try_shutdown(context=context)
 
 
 def _ask(server, t=None) -> SampleSurface.Response:
