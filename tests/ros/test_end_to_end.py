@@ -4,6 +4,7 @@ import math
 import os
 import re
 import signal
+import threading
 import time
 from pathlib import Path
 
@@ -26,6 +27,7 @@ from boat_msgs_py import names
 from boat_msgs_py.convert import seconds_to_time, time_to_seconds, wave_field_from_msg
 from boat_msgs_py.qos import WAVE_FIELD_QOS
 from ocean_sim.physics.waves import sample_surface
+from ocean_sim.ros.client import OceanUnavailableError, query_surface
 
 
 def _yaw(odom):
@@ -512,6 +514,30 @@ def test_processes_report_a_dead_child_and_restart_the_ocean(boatsim, probe):
     assert sim.stop(signal.SIGINT) == 1  # a child died
     assert all(_gone(pid) for pid in (alpha, charlie))
     assert "Traceback" not in sim.output()
+
+
+def test_a_killed_simulation_leaves_the_graph_within_its_lease(boatsim, probe):
+    # boatsim's Fast DDS profile gives its participants a 4 s lease: peers drop a process that
+    # died without a word within that. With Fast DDS's 20 s default the nodes stayed listed
+    # 18.6 s after a SIGKILL (measured), and this bound failed.
+    sim = boatsim("run", "--fast")
+    probe.spin_until(lambda: {"ocean", "boat_dynamics"} <= set(probe.node.get_node_names()),
+                     30.0, "the simulation's nodes")
+    sim.stop(signal.SIGKILL)
+    probe.spin_until(lambda: not {"ocean", "boat_dynamics"} & set(probe.node.get_node_names()),
+                     12.0, "the killed nodes leaving the graph")
+
+
+def test_a_query_fails_at_once_when_its_server_leaves_without_answering(probe):
+    # a stand-in server that is listed but never answers (nobody spins it), then leaves the
+    # graph as a dead one does once its lease has run out: the query says so then, where it
+    # used to wait out its whole timeout
+    stand_in = probe.other_node("stand_in_ocean")
+    service = stand_in.create_service(SampleSurface, "/ocean/sample_surface",
+                                      lambda request, response: response)
+    threading.Timer(2.0, stand_in.destroy_service, (service,)).start()
+    with pytest.raises(OceanUnavailableError, match="left the ROS graph without answering"):
+        query_surface([(1.0, 2.0)], timeout=60.0)
 
 
 def test_processes_children_die_with_the_parent(boatsim, probe):

@@ -73,10 +73,15 @@ def query_surface(points: list[tuple[float, float]], sim_time: float | None = No
                                         points=[Point(x=x, y=y) for x, y in points])
         future = client.call_async(request)
         while not future.done():
+            if not client.service_is_ready():  # the server left the graph: no answer comes
+                raise OceanUnavailableError(
+                    f"{SAMPLE_SURFACE}: its server left the ROS graph without answering (it "
+                    "stopped or died)")
             if time.monotonic() > deadline:
                 raise OceanUnavailableError(
-                    f"{SAMPLE_SURFACE} did not answer within {timeout:g} s (a server killed "
-                    "in the last 20 s stays listed until its DDS lease runs out)")
+                    f"{SAMPLE_SURFACE} did not answer within {timeout:g} s (a server that "
+                    "died stays listed until its DDS lease runs out: 4 s for boatsim's "
+                    "processes, 20 s for Fast DDS's default)")
             executor.spin_once(timeout_sec=0.05)
         return QueryResult(points, sim_time, future.result())
     finally:
