@@ -18,12 +18,14 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 def ros_context(monkeypatch):
     """An rclpy context of the test's own, on localhost and a domain of this process's own.
 
-    For nodes made in-process and fed their callbacks directly (no graph). Domains 10-29
-    (tests/ros uses 30-231, after this part of the suite).
+    For nodes made in-process and fed their callbacks directly (no graph). Domain 10 plus
+    the pytest-xdist worker's number (gw0, gw1, ...): tests/ros uses 30-231, after this part
+    of the suite.
     """
     import rclpy
 
-    monkeypatch.setenv("ROS_DOMAIN_ID", str(10 + os.getpid() % 20))
+    worker = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw"))
+    monkeypatch.setenv("ROS_DOMAIN_ID", str(10 + worker))
     monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
     monkeypatch.delenv("ROS_LOCALHOST_ONLY", raising=False)
     context = rclpy.Context()

@@ -1,8 +1,9 @@
 """ROS end-to-end fixtures: an isolated domain, `boatsim` subprocesses, a probe node.
 
 Every test here runs on a ROS_DOMAIN_ID of its own (from the pytest process id and the
-test's place in the run: a process a test SIGKILLed stays listed on its domain for the DDS
-lease, 20 s, and a client of the next test could send its request to that ghost only) with
+test's place in the run: a process a test SIGKILLed stays listed on its domain for its DDS
+lease, 4 s for boatsim's processes and 20 s for others such as a probe, and a client of the
+next test could send its request to that ghost only) with
 ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST, and stops every process it starts: at its end, any
 process still carrying its BOATSIM_TEST_TAG (a child of a killed parent, for instance) is
 given 20 s and then killed, with a warning.

@@ -53,7 +53,7 @@ from pathlib import Path
 from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import start_child, stop_processes
+from boat_dynamics.process import STOP_SIGNALS, start_child, stop_processes
 from boat_dynamics.ros.barrier import shard_slice
 from boat_dynamics.ros.runner import RunOptions
 from boat_dynamics.tools.recording import RecordError
@@ -304,7 +304,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     cuts: dict[Path, int] = {}
     signals: list[int] = []
     previous = {sig: signal.signal(sig, lambda signum, _: signals.append(signum))
-                for sig in (signal.SIGINT, signal.SIGTERM)}
+                for sig in STOP_SIGNALS}  # (list.append takes no lock: see stop_on_signals)
     start = time.monotonic()
     try:
         for c in children:
