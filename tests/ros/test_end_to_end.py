@@ -306,9 +306,15 @@ def test_existing_record_directory_is_refused(boatsim, tmp_path):
 
 
 def test_thrust_stops_after_cmd_timeout_set_at_run_time(boatsim, probe, tmp_path):
+    from rosbags.highlevel import AnyReader
+
     flat = tmp_path / "flat.yaml"
     flat.write_text("boats:\n  - damping: {linear: [500, 4000, 12000, 6000, 12000, 3000]}\n")
-    sim = boatsim("run", str(flat), "--fast")
+    bag = tmp_path / "bag"
+    # The speeds are read from the run's own recording, which holds every /odom: under --fast
+    # on a busy machine the probe's depth-10 subscription may miss some (CI lost those of the
+    # 0.5 s push once, so the first pushed speed it saw was the peak).
+    sim = boatsim("run", str(flat), "--fast", "--record", str(bag))
     odoms = []
     probe.node.create_subscription(Odometry, "/odom", odoms.append, 10)
     thrust = probe.node.create_publisher(Float64, "/cmd_thrust", 10)
@@ -324,14 +330,21 @@ def test_thrust_stops_after_cmd_timeout_set_at_run_time(boatsim, probe, tmp_path
         name="cmd_timeout", value=ParameterValue(type=ParameterType.PARAMETER_DOUBLE,
                                                  double_value=0.5))])).results[0]
     assert result.successful, result.reason
-    thrust.publish(Float64(data=1.0))  # once, then silence
 
     def stamp(o):
         return time_to_seconds(o.header.stamp)
 
     t_cmd = stamp(odoms[-1])
+    thrust.publish(Float64(data=1.0))  # once, then silence
     probe.spin_until(lambda: stamp(odoms[-1]) > t_cmd + 20.0, 30.0, "20 s of simulation")
-    speeds = [(stamp(o), o.twist.twist.linear.x) for o in odoms if stamp(o) > t_cmd]
+    assert sim.stop() == 0
+    assert "/cmd_thrust: no command for 0.5 s; thrust set to 0" in sim.output()
+    with AnyReader([bag]) as reader:
+        conns = [c for c in reader.connections if c.topic == "/odom"]
+        recorded = [reader.deserialize(raw, c.msgtype) for c, _, raw in reader.messages(conns)]
+    speeds = [(stamp(o), o.twist.twist.linear.x) for o in recorded if stamp(o) > t_cmd]
+    steps = np.diff([t for t, _ in speeds])
+    assert steps.max() == pytest.approx(0.02, abs=1e-6)  # every /odom of the run (50 Hz)
     pushed = [t for t, u in speeds if u > 1e-6]
     assert pushed, "the command never reached the boat"
     peak_t, peak = max(speeds, key=lambda s: s[1])
@@ -339,8 +352,6 @@ def test_thrust_stops_after_cmd_timeout_set_at_run_time(boatsim, probe, tmp_path
     assert peak == pytest.approx(2000 / 500 * (1 - math.exp(-500 * 0.5 / 4100)), rel=0.05)
     assert peak_t - pushed[0] == pytest.approx(0.5, abs=0.05)
     assert speeds[-1][1] < 0.5 * peak  # then drag slows it down
-    assert sim.stop() == 0
-    assert "/cmd_thrust: no command for 0.5 s; thrust set to 0" in sim.output()
 
 
 def test_several_boats_each_in_its_namespace(boatsim, probe):
