@@ -272,6 +272,24 @@ def test_ctrl_c_stops_cleanly_and_finalizes_the_bag(boatsim, probe, tmp_path):
     assert n >= 100
 
 
+def test_a_real_time_runs_stamps_are_the_wall_clock_time_it_publishes_at(boatsim, probe):
+    # Before: simulation time 0 was when the process started, so every stamp lagged the wall
+    # clock by the start-up (0.49-0.73 s, the default scenario); and a step's outputs went out
+    # a step (10 ms) before their stamp.
+    sim = boatsim("run")
+    lags = []
+
+    def receive(odom: Odometry) -> None:
+        lags.append(time.time() - time_to_seconds(odom.header.stamp))
+
+    probe.node.create_subscription(Odometry, "/odom", receive, 10)
+    probe.spin_until(lambda: len(lags) >= 100, 60.0, "100 /odom")
+    assert sim.stop() == 0
+    assert min(lags) >= -1e-3, f"published {-min(lags):.4f} s before its stamp"
+    # the prompt deliveries (idle: 1.3-5 ms) show the stamp is the time it went out
+    assert min(lags) < 0.1, f"every /odom arrived at least {min(lags):.3f} s after its stamp"
+
+
 def test_sigterm_stops_cleanly(boatsim, probe):
     sim = boatsim("run", "--fast")
     odoms = []

@@ -36,7 +36,11 @@ def test_wrench_topics_on_subscription_are_made_when_someone_subscribes(boatsim,
     probe.node.create_subscription(WrenchStamped, "/alpha/wrench/total", total.append, 10)
     probe.spin_until(lambda: len(total) >= 5, 60.0, "/alpha/wrench/total once subscribed")
     stamps = np.array([time_to_seconds(w.header.stamp) for w in total])
-    np.testing.assert_allclose(np.diff(stamps), 0.1, atol=1e-6)  # diagnostics_rate_hz 10
+    # diagnostics_rate_hz 10: every stamp on the 0.1 s grid (a probe stalled on a busy machine
+    # may miss one), most 0.1 s apart
+    steps = np.diff(stamps) / 0.1
+    np.testing.assert_allclose(steps, np.round(steps), atol=1e-5)
+    assert (np.round(steps) >= 1).all() and np.median(np.round(steps)) == 1
     assert total[-1].header.frame_id == "alpha/base_link"
     after = {t for t in _topics(probe) if "/wrench/" in t}
     assert after == {"/alpha/wrench/total"}  # only what someone asked for

@@ -713,6 +713,11 @@ class DynamicsNode(Node):
 
     def advance(self) -> None:
         """Take one physics step for every boat, then publish what is due."""
+        self.step()
+        self.publish_outputs()
+
+    def step(self) -> None:
+        """Take one physics step for every boat (publishing nothing)."""
         if self.sea is None:
             raise RuntimeError("no sea state yet: /ocean/wave_field has not been received")
         inputs = self._fleet_inputs()
@@ -722,7 +727,6 @@ class DynamicsNode(Node):
             self._before = self._state
             self._state, self._forces, self._contact = done.state, done.forces, None
         self._sim_clock.steps += 1
-        self.publish_outputs()
 
     def publish_outputs(self) -> None:
         """Publish /clock, odometry and wrenches that are due at the current step."""

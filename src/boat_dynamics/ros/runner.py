@@ -366,7 +366,8 @@ class _Loop:
         options, clock, bag, fast = self.options, self.clock, self.bag, self.fast
         scenario = self.scenario
         tap = bag.tap(clock.stamp_ns) if bag is not None else None
-        deferred = options.ready_fd is not None  # the epoch comes with the parent's go
+        # the epoch comes with the parent's go, or (one process, real time) at the loop's start
+        deferred = options.ready_fd is not None or self._epoch_at_loop_start
         if options.role == "all":  # the surface service beside this process (module docs)
             # its own session: a terminal's Ctrl-C is this process's to handle
             self.shared_time = SharedTime()
@@ -435,15 +436,15 @@ class _Loop:
         self._make_nodes()
         if self.options.ready_fd is not None and not self._handshake():
             return 0  # stopped before the start
+        if self._epoch_at_loop_start:
+            self._start(time.time())
         if self.conductor is not None:
             return self._conduct()
         if not self._wait_for_sea():
             return 1
         if self.stop.is_set():
             return 0
-        wall0 = (time.time() - self.clock.t
-                 if self.options.epoch is None and self.options.ready_fd is None
-                 else self.clock.epoch)  # a late process catches up: no time is skipped
+        wall0 = self.clock.epoch  # real time: a late process catches up, no time is skipped
         if not self.fast:
             self._serve_callbacks(wall0)  # --processes: the outputs at t are due at wall0 + t
         if self.dynamics is not None:
@@ -462,18 +463,7 @@ class _Loop:
                and not self.stop.is_set()):
             if not self._hold_for_grant(wall0):
                 break
-            if self.dynamics is not None:
-                self.dynamics.advance()
-                self._report()
-                if self.clock.steps % self._checkpoint_steps == 0:
-                    self._checkpoint()
-            else:
-                self.clock.steps += 1
-            if self.ocean is not None:
-                self.ocean.advance(self.clock.t)
-            if self.shared_time is not None:
-                self.shared_time.write(self.clock.t)
-            self._serve_callbacks(wall0)
+            self._step(wall0)
             next_discovery = self._record_due(next_discovery)
             if self.dynamics is not None:
                 self.display.update(self.dynamics, self.clock.t)
@@ -483,6 +473,30 @@ class _Loop:
         if self.dynamics is not None:
             self.display.update(self.dynamics, self.clock.t, force=True)
         return 0
+
+    def _step(self, wall0: float) -> None:
+        """One step, then its outputs: in real time at their wall-clock time wall0 + t.
+
+        Callbacks are served between (real time: until then) or after (fast): commands
+        received take effect at the next step either way.
+        """
+        if self.dynamics is not None:
+            self.dynamics.step()
+        else:
+            self.clock.steps += 1
+        if not self.fast:  # not a step early, as until 2026-12
+            self._serve_callbacks(wall0)
+        if self.dynamics is not None:
+            self.dynamics.publish_outputs()
+            self._report()
+            if self.clock.steps % self._checkpoint_steps == 0:
+                self._checkpoint()
+        if self.ocean is not None:
+            self.ocean.advance(self.clock.t)
+        if self.shared_time is not None:
+            self.shared_time.write(self.clock.t)
+        if self.fast:
+            self._serve_callbacks(wall0)
 
     def _resume(self, deferred: bool) -> None:
         """Take the boats' state from ``options.resume`` (a dead shard's last snapshot)."""
@@ -527,12 +541,25 @@ class _Loop:
             self.executor.spin_once(timeout_sec=0.05)
             if self.conductor is not None:  # a replayer waiting for /clock knows we are here
                 self.conductor.repeat_clock()
-        self.clock.epoch = self.parent.epoch
+        self._start(self.parent.epoch)
+        return True
+
+    @property
+    def _epoch_at_loop_start(self) -> bool:
+        """One process in real time: simulation time 0 is the wall-clock time the loop starts.
+
+        Not when the process started: making the nodes took 0.5 s (the default scenario),
+        and every stamp then lagged the wall clock by that much.
+        """
+        return not self.fast and self.options.epoch is None and self.options.ready_fd is None
+
+    def _start(self, epoch: float) -> None:
+        """Take ``epoch`` (s, the stamp of simulation time 0); publish what waited for it."""
+        self.clock.epoch = epoch
         if self.ocean is not None:
-            self.ocean.start(self.clock.epoch)
+            self.ocean.start(epoch)
         if self.dynamics is not None:
             self.dynamics.start()
-        return True
 
     def _await_recorder(self) -> None:
         """Serve callbacks until the recorder subscribes to every publisher of this process."""
