@@ -12,15 +12,11 @@ from boat_msgs_py.tap import SUBSCRIBER_CHECK_PERIOD, GraphWatch, Tap, TappedPub
 
 
 @pytest.fixture
-def node(monkeypatch):
-    monkeypatch.setenv("ROS_DOMAIN_ID", str(150 + os.getpid() % 80))
-    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-    context = rclpy.Context()
-    rclpy.init(context=context)
-    made = rclpy.create_node("tap_test", context=context)
+def node(ros_context):
+    """A node of the test's own context (a domain of this xdist worker's own)."""
+    made = rclpy.create_node("tap_test", context=ros_context)
     yield made
     made.destroy_node()
-    rclpy.try_shutdown(context=context)
 
 
 def test_an_optional_topic_is_wanted_once_someone_subscribes(node):

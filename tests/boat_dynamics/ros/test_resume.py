@@ -4,7 +4,6 @@ In-process nodes, stepped by the test: no ROS graph is needed (commands go throu
 own callbacks, messages are read from their taps).
 """
 
-import os
 
 import numpy as np
 import pytest
@@ -33,13 +32,9 @@ SCENARIO = {
 
 
 @pytest.fixture
-def ros(monkeypatch):
-    monkeypatch.setenv("ROS_DOMAIN_ID", str(180 + os.getpid() % 40))
-    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-    context = rclpy.Context()
-    rclpy.init(context=context)
-    yield context
-    rclpy.try_shutdown(context=context)
+def ros(ros_context):
+    """The test's own context (tests/conftest.py: a domain of this xdist worker's own)."""
+    return ros_context
 
 
 def _node(context, scenario, sink):
