@@ -558,40 +558,18 @@ def _read_scenario(path: str | None, who: str):
 
 def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
-    from boat_dynamics.physics.pipeline import InitError, start
+    from boat_dynamics.physics.pipeline import InitError
     from boat_dynamics.physics.scenario import default_scenario_path
-    from boat_dynamics.physics.snapshot import SnapshotError
-    from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
 
     path = args.scenario or default_scenario_path()
     if (scenario := _read_scenario(path, "boatsim")) is None:
         return 2
-    if args.verb != "_node":  # the parent says it once
-        for note in scenario.notes:
-            print(f"boatsim: warning: {path}: {note}", file=sys.stderr)
     if args.verb == "_node":
-        if (args.epoch is None) == (args.ready_fd is None):
-            print("boatsim _node: error: exactly one of --epoch and --ready-fd",
-                  file=sys.stderr)
-            return 2
-        options = RunOptions(duration=args.duration, role=args.role, shard=args.shard,
-                             shards=args.shards, fast=args.fast, lockstep=args.lockstep,
-                             record=args.record, exclude_topics=tuple(args.exclude_topics),
-                             epoch=args.epoch, ready_fd=args.ready_fd, supervised=True,
-                             await_recorder=args.await_recorder, checkpoint=args.checkpoint,
-                             resume=args.resume)
-        try:
-            return run(scenario, options, status=open(os.devnull, "w") if args.quiet
-                       else sys.stderr)
-        except SnapshotError as exc:
-            print(f"boatsim _node: error: cannot resume: {exc}", file=sys.stderr)
-            return 2
-        except InitError as exc:
-            first = 0 if args.shard is None else shard_slice(*args.shard,
-                                                             len(scenario.boats)).start
-            return _refuse_boat(path, exc, first + exc.boat)
+        return _run_node(args, scenario, path)
+    for note in scenario.notes:  # the parent says it once
+        print(f"boatsim: warning: {path}: {note}", file=sys.stderr)
     if args.lockstep and not args.fast:
         print("boatsim: error: --lockstep needs --fast (a real-time run follows the wall "
               "clock)", file=sys.stderr)
@@ -600,23 +578,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.only:
         return _run_only(args, scenario, path, fast)
     if args.processes or args.shards:
-        count = len(scenario.boats) if args.processes else args.shards
-        if (problem := _too_many_shards(count, len(scenario.boats))) is not None:
-            print(f"boatsim: error: --shards {count}: {problem}", file=sys.stderr)
-            return 2
-        from boat_dynamics.ros.processes import run_processes
-
-        try:  # refused here, before any process starts (each initializes its own boats)
-            start(scenario.boats, scenario.sea)
-        except InitError as exc:
-            return _refuse_boat(path, exc, exc.boat)
-        try:
-            return run_processes(scenario, str(path), RunOptions(
-                duration=args.duration, record=args.record, fast=fast, lockstep=args.lockstep,
-                shards=count, exclude_topics=tuple(args.exclude_topics)))
-        except RecordError as exc:
-            print(f"boatsim: error: {exc}", file=sys.stderr)
-            return 2
+        return _run_processes(args, scenario, path, fast)
     try:
         return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
                                         record=args.record, lockstep=args.lockstep,
@@ -626,6 +588,58 @@ def _run(args: argparse.Namespace) -> int:
         return 2
     except InitError as exc:
         return _refuse_boat(path, exc, exc.boat)
+
+
+def _run_node(args: argparse.Namespace, scenario, path) -> int:
+    """``_node``: one process of ``run --processes`` / ``--shards``, started by the parent."""
+    from boat_dynamics.physics.pipeline import InitError
+    from boat_dynamics.physics.snapshot import SnapshotError
+    from boat_dynamics.ros.barrier import shard_slice
+    from boat_dynamics.ros.runner import RunOptions, run
+
+    if (args.epoch is None) == (args.ready_fd is None):
+        print("boatsim _node: error: exactly one of --epoch and --ready-fd", file=sys.stderr)
+        return 2
+    options = RunOptions(duration=args.duration, role=args.role, shard=args.shard,
+                         shards=args.shards, fast=args.fast, lockstep=args.lockstep,
+                         record=args.record, exclude_topics=tuple(args.exclude_topics),
+                         epoch=args.epoch, ready_fd=args.ready_fd, supervised=True,
+                         await_recorder=args.await_recorder, checkpoint=args.checkpoint,
+                         resume=args.resume)
+    try:
+        return run(scenario, options, status=open(os.devnull, "w") if args.quiet
+                   else sys.stderr)
+    except SnapshotError as exc:
+        print(f"boatsim _node: error: cannot resume: {exc}", file=sys.stderr)
+        return 2
+    except InitError as exc:
+        first = 0 if args.shard is None else shard_slice(*args.shard,
+                                                         len(scenario.boats)).start
+        return _refuse_boat(path, exc, first + exc.boat)
+
+
+def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
+    """``run --processes`` / ``--shards N``: the ocean and the shards, each a process."""
+    from boat_dynamics.physics.pipeline import InitError, start
+    from boat_dynamics.ros.processes import run_processes
+    from boat_dynamics.ros.runner import RunOptions
+    from boat_dynamics.tools.recording import RecordError
+
+    count = len(scenario.boats) if args.processes else args.shards
+    if (problem := _too_many_shards(count, len(scenario.boats))) is not None:
+        print(f"boatsim: error: --shards {count}: {problem}", file=sys.stderr)
+        return 2
+    try:  # refused here, before any process starts (each initializes its own boats)
+        start(scenario.boats, scenario.sea)
+    except InitError as exc:
+        return _refuse_boat(path, exc, exc.boat)
+    try:
+        return run_processes(scenario, str(path), RunOptions(
+            duration=args.duration, record=args.record, fast=fast, lockstep=args.lockstep,
+            shards=count, exclude_topics=tuple(args.exclude_topics)))
+    except RecordError as exc:
+        print(f"boatsim: error: {exc}", file=sys.stderr)
+        return 2
 
 
 def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:

@@ -39,7 +39,11 @@ from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.propulsion import MAX_THRUSTERS
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
-from boat_dynamics.physics.scenario.specs import ADVERTISED_WRENCH_BOATS, WrenchTopics
+from boat_dynamics.physics.scenario.specs import (
+    ADVERTISED_WRENCH_BOATS,
+    SimulationSettings,
+    WrenchTopics,
+)
 from boat_dynamics.physics.snapshot import SnapshotError, flatten, restore
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.wrench import cross
@@ -201,20 +205,7 @@ class DynamicsNode(Node):
         super().__init__(name, context=context)
         sim = scenario.simulation
         self._sim_clock = clock
-        self.declare_parameter("rate_hz", sim.rate_hz, _rate_descriptor(
-            "Physics steps per simulated second, Hz (scenario simulation.rate_hz).", 10000.0))
-        self.declare_parameter("publish_rate_hz", sim.publish_rate_hz, _rate_descriptor(
-            "odom / pose / twist messages per simulated second, Hz.", sim.rate_hz))
-        self.declare_parameter("diagnostics_rate_hz", sim.diagnostics_rate_hz, _rate_descriptor(
-            "wrench/* messages per simulated second, Hz.", sim.rate_hz))
-        self.declare_parameter("cmd_timeout", sim.cmd_timeout, ParameterDescriptor(
-            description="s without a cmd_thrust message after which thrust is set to 0.",
-            floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
-        self._cmd_timeout = self.get_parameter("cmd_timeout").value  # read every step: cached
-        self.declare_parameter("publish_tf", sim.publish_tf, ParameterDescriptor(
-            description="Publish /tf world -> <boat>/base_link from the true pose (false: a "
-                        "localization stack owns that transform)."))
-        self._publish_tf = bool(self.get_parameter("publish_tf").value)
+        self._declare_parameters(sim)
         self._rate = sim.rate_hz
         self._substeps = sim.substeps
         self._dt = 1.0 / (sim.rate_hz * sim.substeps)
@@ -251,6 +242,41 @@ class DynamicsNode(Node):
                 "someone subscribes to them (simulation.wrench_topics: "
                 f"{sim.wrench_topics}; `advertised` lists them all from the start, with 9 DDS "
                 "endpoints a boat more to make); a recording holds them all")
+        self._make_lockstep(lockstep)  # before the boats' command subscriptions
+        self._make_fleet(scenario, stopped)
+        self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
+        if not deferred:
+            self.start()
+        self.commands_received = 0
+        # (command topic, "ignored" | "clamped") -> (wall time of its last warning, problems
+        # not warned about since)
+        self._warned: dict[tuple[str, str], tuple[float, int]] = {}
+        self._wrong_types: set[tuple[str, str]] = set()  # (command topic, type) reported
+        self._declare_control_modes()
+        self.add_on_set_parameters_callback(self._on_set_parameters)
+        self.add_post_set_parameters_callback(self._after_set_parameters)
+
+    # ------------------------------------------------------------------ set-up
+
+    def _declare_parameters(self, sim: SimulationSettings) -> None:
+        """The node's rate, cmd_timeout and publish_tf parameters (units and ranges)."""
+        self.declare_parameter("rate_hz", sim.rate_hz, _rate_descriptor(
+            "Physics steps per simulated second, Hz (scenario simulation.rate_hz).", 10000.0))
+        self.declare_parameter("publish_rate_hz", sim.publish_rate_hz, _rate_descriptor(
+            "odom / pose / twist messages per simulated second, Hz.", sim.rate_hz))
+        self.declare_parameter("diagnostics_rate_hz", sim.diagnostics_rate_hz, _rate_descriptor(
+            "wrench/* messages per simulated second, Hz.", sim.rate_hz))
+        self.declare_parameter("cmd_timeout", sim.cmd_timeout, ParameterDescriptor(
+            description="s without a cmd_thrust message after which thrust is set to 0.",
+            floating_point_range=[FloatingPointRange(from_value=0.01, to_value=3600.0)]))
+        self._cmd_timeout = self.get_parameter("cmd_timeout").value  # read every step: cached
+        self.declare_parameter("publish_tf", sim.publish_tf, ParameterDescriptor(
+            description="Publish /tf world -> <boat>/base_link from the true pose (false: a "
+                        "localization stack owns that transform)."))
+        self._publish_tf = bool(self.get_parameter("publish_tf").value)
+
+    def _make_lockstep(self, lockstep: LockstepRole) -> None:
+        """The /boatsim/lockstep subscription and its ready word (see ``lockstep``)."""
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
         self._lockstep_sub = None  # before the boats' command subscriptions (see lockstep)
@@ -262,6 +288,10 @@ class DynamicsNode(Node):
                 Float64MultiArray, names.LOCKSTEP,
                 self._on_lockstep if lockstep == "follow" else lambda msg: None, COMMAND_QOS)
             self._ready_pub = self.create_publisher(String, names.LOCKSTEP_READY, COMMAND_QOS)
+
+    def _make_fleet(self, scenario: Scenario, stopped: Callable[[], bool] | None) -> None:
+        """Every boat's publishers and subscriptions; the fleet's templates, /tf, sensors."""
+        sim, tap = scenario.simulation, self._tap
         self.boats = []
         for i, spec in enumerate(scenario.boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
@@ -280,14 +310,9 @@ class DynamicsNode(Node):
                                                    [b.spec.name for b in self.boats])
         self._transforms = TransformPublisher(self, list(scenario.boats), tap)
         self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
-        self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
-        if not deferred:
-            self.start()
-        self.commands_received = 0
-        # (command topic, "ignored" | "clamped") -> (wall time of its last warning, problems
-        # not warned about since)
-        self._warned: dict[tuple[str, str], tuple[float, int]] = {}
-        self._wrong_types: set[tuple[str, str]] = set()  # (command topic, type) reported
+
+    def _declare_control_modes(self) -> None:
+        """A ``[<boat>.]control_mode`` parameter per boat."""
         self._mode_params = {}
         for boat in self.boats:
             name = f"{boat.spec.name}.control_mode" if boat.spec.name else "control_mode"
@@ -296,10 +321,6 @@ class DynamicsNode(Node):
                 description=f"Control mode of boat {boat.spec.name or '(root)'}: one of "
                             f"{', '.join(CONTROL_MODES)}; switching ramps in over "
                             "control.transition s, without a jump."))
-        self.add_on_set_parameters_callback(self._on_set_parameters)
-        self.add_post_set_parameters_callback(self._after_set_parameters)
-
-    # ------------------------------------------------------------------ set-up
 
     def _make_boat(self, spec: BoatSpec, index: int) -> _Boat:
         boat = _Boat(spec=spec, index=index)

@@ -48,6 +48,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO
@@ -290,14 +291,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     record = Path(options.record) if options.record else None
     if record is not None and record.exists():  # refused here, before any process starts
         raise RecordError(f"{record} already exists; choose a new directory for the bag")
-    parts = None
-    recorder = None
-    if record is not None and options.fast:  # a bag per process, merged at the end
-        parts = record.parent / f".{record.name}.parts-{os.getpid()}"
-        shutil.rmtree(parts, ignore_errors=True)
-        parts.mkdir(parents=True)
-    elif record is not None:
-        recorder = _start_recorder(options.record, options.exclude_topics)
+    parts, recorder = _prepare_recording(record, options)
     snapshots = (Path(tempfile.mkdtemp(prefix="boatsim-snapshots-"))
                  if options.fast and not options.lockstep else None)
     children = _children(scenario, path, options, parts, snapshots)
@@ -313,9 +307,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
         print(f"boatsim: started {len(children)} processes (ocean + {options.shards} {kind}"
               f"{', one clock: ' + _clock_words(options) if options.fast else ''}): pids "
               f"{' '.join(str(c.proc.pid) for c in children)}"
-              + (f"; recording to {options.record} (pid {recorder.pid})" if recorder else "")
-              + (f"; recording to {options.record} (a bag per process, merged at the end)"
-                 if parts else ""), file=status)
+              + _recording_words(options, recorder, parts), file=status)
         if not _await_ready(children, lambda: bool(signals), status):
             return 0 if signals else 1
         epoch = 0.0 if options.fast else time.time() + _GO_AHEAD
@@ -323,18 +315,8 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
         print(f"boatsim: every process ready after {time.monotonic() - start:.1f} s"
               + (" (the recorder subscribed to each)" if recorder else "")
               + "; simulation time 0 is now", file=status)
-        forwarded = 0
-
-        def stopping() -> bool:
-            nonlocal forwarded
-            for sig in signals[forwarded:]:
-                for c in children:
-                    if c.proc.poll() is None:
-                        c.proc.send_signal(sig)
-            forwarded = len(signals)
-            return bool(signals)
-
-        died = _watch(children, epoch, stopping, status, options.fast, cuts)
+        died = _watch(children, epoch, _forwarder(signals, children), status, options.fast,
+                      cuts)
         stop_processes([children[0].proc])  # the ocean, when it runs with no duration
         ok = all(c.status in (0, None) for c in children) and not died
         return 0 if ok else 1
@@ -349,6 +331,50 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
             shutil.rmtree(snapshots, ignore_errors=True)
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+
+
+def _prepare_recording(record: Path | None, options: RunOptions
+                       ) -> tuple[Path | None, subprocess.Popen | None]:
+    """(a directory for a bag per process, or None; the recorder process, or None).
+
+    Fast: each process writes its own bag, merged at the end. Real time: one recorder.
+    """
+    if record is None:
+        return None, None
+    if options.fast:
+        parts = record.parent / f".{record.name}.parts-{os.getpid()}"
+        shutil.rmtree(parts, ignore_errors=True)
+        parts.mkdir(parents=True)
+        return parts, None
+    return None, _start_recorder(options.record, options.exclude_topics)
+
+
+def _recording_words(options: RunOptions, recorder: subprocess.Popen | None,
+                     parts: Path | None) -> str:
+    if recorder is not None:
+        return f"; recording to {options.record} (pid {recorder.pid})"
+    if parts is not None:
+        return f"; recording to {options.record} (a bag per process, merged at the end)"
+    return ""
+
+
+def _forwarder(signals: list[int], children: list[_Child]) -> Callable[[], bool]:
+    """A ``stopping()`` for :func:`_watch`: True once a signal has come.
+
+    Each call passes the signals new since the last on to the children still running.
+    """
+    forwarded = 0
+
+    def stopping() -> bool:
+        nonlocal forwarded
+        for sig in signals[forwarded:]:
+            for c in children:
+                if c.proc.poll() is None:
+                    c.proc.send_signal(sig)
+        forwarded = len(signals)
+        return bool(signals)
+
+    return stopping
 
 
 def _clock_words(options: RunOptions) -> str:

@@ -48,6 +48,7 @@ from boat_dynamics.ros.participants import PROFILE, Participants, use_profile
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder
 from boat_msgs_py import names
 from boat_msgs_py.qos import RECORD_QOS
+from boat_msgs_py.tap import Tap
 from ocean_sim.ros.node import OceanNode
 
 __all__ = ["CHECKPOINT_PERIOD", "RunOptions", "run"]
@@ -377,18 +378,7 @@ class _Loop:
         # The ocean first: its participant discovers the boats' endpoints while they are made
         # (on the other core), and the wave field reaches the dynamics node before them.
         if options.role in ("all", "ocean"):
-            self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
-                                   epoch=None if deferred else clock.epoch, tap=tap,
-                                   serve_surface=options.role == "ocean",
-                                   surface_centers=(lambda: self.dynamics.boat_positions())
-                                   if options.role == "all" else None,
-                                   environment=scenario.environment)
-            self.nodes.append(self.ocean)
-            if fast and options.shards:
-                self.conductor = StepConductor(options.shards, clock, self.duration,
-                                               options.lockstep, tap,
-                                               context=self.ocean.context)  # as the member
-                self.nodes.append(self.conductor)
+            self._make_ocean(tap, deferred)
         if options.role in ("all", "shard"):
             self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
                                          tap=tap, name=_dynamics_name(scenario, options),
@@ -412,20 +402,42 @@ class _Loop:
                              "as it is made: start-up grows as the square of the fleet "
                              f"(boat_dynamics/ros/{PROFILE.name} avoids it)")
         if bag is not None and options.role != "shard":
-            # The sim's own topics are tapped at their publishers; the recorder takes the rest
-            # (with shards: what no shard taps; it looks once every shard has reported).
-            self.recorder_node = rclpy.create_node(names.RECORDER_NODE,
-                                                   context=self.participants.new())
-            self.nodes.append(self.recorder_node)
-            self.recorder = TopicRecorder(self.recorder_node, bag, clock.stamp_ns,
-                                          skip=tap.topics | _BARRIER_TOPICS,
-                                          qos=RECORD_QOS,
-                                          skip_if=_tapped_by_shards if options.shards else None)
-            if self.conductor is None:
-                self.recorder.discover()
+            self._make_recorder(tap)
         for n in self.nodes:
             if n is not self.member and n is not self.conductor:  # they spin on their own
                 self.executor.add_node(n)
+
+    def _make_ocean(self, tap: Tap | None, deferred: bool) -> None:
+        """The ocean node; with shards in fast mode, the step barrier's clock owner beside it."""
+        options, clock, scenario = self.options, self.clock, self.scenario
+        self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
+                               epoch=None if deferred else clock.epoch, tap=tap,
+                               serve_surface=options.role == "ocean",
+                               surface_centers=(lambda: self.dynamics.boat_positions())
+                               if options.role == "all" else None,
+                               environment=scenario.environment)
+        self.nodes.append(self.ocean)
+        if self.fast and options.shards:
+            self.conductor = StepConductor(options.shards, clock, self.duration,
+                                           options.lockstep, tap,
+                                           context=self.ocean.context)  # as the member
+            self.nodes.append(self.conductor)
+
+    def _make_recorder(self, tap: Tap) -> None:
+        """The recorder of what this process's publishers do not tap, in a participant of its own.
+
+        The sim's own topics are tapped at their publishers; the recorder takes the rest
+        (with shards: what no shard taps; it looks once every shard has reported).
+        """
+        self.recorder_node = rclpy.create_node(names.RECORDER_NODE,
+                                               context=self.participants.new())
+        self.nodes.append(self.recorder_node)
+        self.recorder = TopicRecorder(self.recorder_node, self.bag, self.clock.stamp_ns,
+                                      skip=tap.topics | _BARRIER_TOPICS,
+                                      qos=RECORD_QOS,
+                                      skip_if=_tapped_by_shards if self.options.shards else None)
+        if self.conductor is None:
+            self.recorder.discover()
 
     def run(self) -> int:
         """Make the nodes, wait for the sea state, step until the duration or a stop.

@@ -121,97 +121,136 @@ def replay(bag: str | Path, topics: list[str] | None = None, rate: float = 1.0,
         BagError: unreadable bag or topics.
         ReplayError: no simulation subscribes to the command topics within ``timeout``.
     """
-    import rclpy
-    from rclpy.executors import SingleThreadedExecutor
-    from rosgraph_msgs.msg import Clock
-    from std_msgs.msg import Float64, Float64MultiArray, String
-
-    from boat_msgs_py.convert import time_to_seconds
-    from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
-
     schedule = command_schedule(bag, topics)
-    context = rclpy.Context()
-    rclpy.init(context=context)
-    node = rclpy.create_node(names.REPLAY_NODE, context=context)
-    executor = SingleThreadedExecutor(context=context)
-    executor.add_node(node)
-    clock = [math.nan]
-    node.create_subscription(Clock, names.CLOCK,
-                             lambda m: clock.__setitem__(0, time_to_seconds(m.clock)), CLOCK_QOS)
-    pubs = {t: node.create_publisher(Float64, t, COMMAND_QOS)
-            for t in sorted({c.topic for c in schedule})}
-    grant = node.create_publisher(Float64MultiArray, names.LOCKSTEP, COMMAND_QOS)
-    ready: dict[str, set[str]] = {}  # node -> the command topics it has matched
+    replayer = _Replayer(sorted({c.topic for c in schedule}), timeout)
+    try:
+        replayer.spin_until(replayer.commands_followed,
+                            f"a simulation subscribing to {', '.join(replayer.pubs)}")
+        lockstep = replayer.lockstep_found()
+        if lockstep:
+            replayer.await_lockstep()
+        replayer.log.info(f"replaying {len(schedule)} commands from {bag} "
+                          f"({'lockstep with /clock' if lockstep else f'wall clock x{rate:g}'})")
+        sent = _send(schedule, replayer.pubs, replayer.grant if lockstep else None,
+                     replayer.clock, rate, replayer.spin_until)
+        if lockstep:
+            replayer.executor.spin_once(timeout_sec=0.1)
+        replayer.log.info(f"replayed {sent} commands")
+        return 0
+    finally:
+        replayer.close()
 
-    def on_ready(msg: String) -> None:
+
+class _Replayer:
+    """The replay node: command publishers, the lockstep grant, /clock and the ready words.
+
+    A publisher per command topic; the grant on /boatsim/lockstep; the simulation's /clock;
+    the lockstep simulations' word that their subscriptions have matched.
+
+    Args:
+        topics: the command topics.
+        timeout: s, how long :meth:`spin_until` waits for anything.
+    """
+
+    def __init__(self, topics: list[str], timeout: float) -> None:
+        import rclpy
+        from rclpy.executors import SingleThreadedExecutor
+        from rosgraph_msgs.msg import Clock
+        from std_msgs.msg import Float64, Float64MultiArray, String
+
+        from boat_msgs_py.convert import time_to_seconds
+        from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS
+
+        self.timeout = timeout
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context)
+        self.node = rclpy.create_node(names.REPLAY_NODE, context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.log = self.node.get_logger()
+        self.clock = [math.nan]  # the simulation's /clock, s
+        self.node.create_subscription(
+            Clock, names.CLOCK, lambda m: self.clock.__setitem__(0, time_to_seconds(m.clock)),
+            CLOCK_QOS)
+        self.pubs = {t: self.node.create_publisher(Float64, t, COMMAND_QOS) for t in topics}
+        self.grant = self.node.create_publisher(Float64MultiArray, names.LOCKSTEP, COMMAND_QOS)
+        self.ready: dict[str, set[str]] = {}  # node -> the command topics it has matched
+        self.node.create_subscription(String, names.LOCKSTEP_READY, self._on_ready, COMMAND_QOS)
+
+    def _on_ready(self, msg) -> None:
         if msg.data.strip():
             name, topics = parse_ready(msg.data)
-            ready[name] = topics
+            self.ready[name] = topics
 
-    node.create_subscription(String, names.LOCKSTEP_READY, on_ready, COMMAND_QOS)
-    log = node.get_logger()
+    def spin_until(self, condition, what) -> None:
+        """Serve callbacks until ``condition()``; ReplayError after the time-out.
 
-    def spin_until(condition, what) -> None:
-        # what: the awaited thing, or a callable giving it (said as it stands at the time-out)
-        deadline = time.monotonic() + timeout
+        ``what``: the awaited thing, or a callable giving it (said as it stands at the
+        time-out).
+        """
+        deadline = time.monotonic() + self.timeout
         while not condition():
             if time.monotonic() > deadline:
-                where = "" if math.isnan(clock[0]) else f" (its /clock: t = {clock[0]:.3f} s)"
+                clock = self.clock[0]
+                where = "" if math.isnan(clock) else f" (its /clock: t = {clock:.3f} s)"
                 what = what() if callable(what) else what
-                raise ReplayError(f"timed out after {timeout:g} s waiting for {what}{where}")
-            executor.spin_once(timeout_sec=0.01)
+                raise ReplayError(f"timed out after {self.timeout:g} s waiting for {what}{where}")
+            self.executor.spin_once(timeout_sec=0.01)
 
-    def commands_followed() -> bool:
-        return all(p.get_subscription_count() > 0 for p in pubs.values())
+    def commands_followed(self) -> bool:
+        """Every command topic has a subscriber."""
+        return all(p.get_subscription_count() > 0 for p in self.pubs.values())
 
-    def followers() -> tuple[set[str], bool]:
-        # /boatsim/lockstep's subscribers that follow it (names), and whether one is not
-        # named yet (its node's discovery has not arrived: ask again)
-        found = {i.node_name for i in node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
+    def followers(self) -> tuple[set[str], bool]:
+        """/boatsim/lockstep's followers (node names), and whether one is not named yet.
+
+        An unnamed subscriber's node discovery has not arrived: ask again.
+        """
+        found = {i.node_name for i in self.node.get_subscriptions_info_by_topic(names.LOCKSTEP)}
         unnamed = bool(found & {"", names.UNKNOWN_NODE})
         return {n for n in found if follows_lockstep(n)}, unnamed
 
-    def waiting_for() -> list[tuple[str, str]]:
-        subscribers = {t: {i.node_name for i in node.get_subscriptions_info_by_topic(t)}
-                       for t in pubs}
-        return unannounced(subscribers, ready)
+    def waiting_for(self) -> list[tuple[str, str]]:
+        """(node, topic) of command subscriptions not yet announced as matched."""
+        subscribers = {t: {i.node_name for i in self.node.get_subscriptions_info_by_topic(t)}
+                       for t in self.pubs}
+        return unannounced(subscribers, self.ready)
 
-    def lockstep_found() -> bool:
-        # A lockstep simulation subscribes to /boatsim/lockstep before its command topics
-        # (each dynamics process, DynamicsNode's ``lockstep``); a real-time one does not. So
-        # once the commands' subscribers are found, a follower is found too or is not
-        # coming: wait a little for it, and on while one is still unnamed. (Before, any
-        # follower counted and /clock had 2 s to come: on a loaded machine it came later,
-        # the replay went by the wall clock and the simulation waited at t = 0 for ever.)
+    def lockstep_found(self) -> bool:
+        """Whether the simulation follows /boatsim/lockstep.
+
+        A lockstep simulation subscribes to /boatsim/lockstep before its command topics
+        (each dynamics process, DynamicsNode's ``lockstep``); a real-time one does not. So
+        once the commands' subscribers are found, a follower is found too or is not
+        coming: wait a little for it, and on while one is still unnamed. (Before, any
+        follower counted and /clock had 2 s to come: on a loaded machine it came later,
+        the replay went by the wall clock and the simulation waited at t = 0 for ever.)
+        """
         start = time.monotonic()
         while True:
-            found, unnamed = followers()
+            found, unnamed = self.followers()
             waited = time.monotonic() - start
-            if found or waited > timeout or (waited > _FOLLOWER_GRACE and not unnamed):
+            if found or waited > self.timeout or (waited > _FOLLOWER_GRACE and not unnamed):
                 return bool(found)
-            executor.spin_once(timeout_sec=0.05)
+            self.executor.spin_once(timeout_sec=0.05)
 
-    try:
-        spin_until(commands_followed, f"a simulation subscribing to {', '.join(pubs)}")
-        lockstep = lockstep_found()
-        if lockstep:
-            spin_until(lambda: not math.isnan(clock[0]),
-                       f"/clock from the lockstep simulation ({', '.join(sorted(followers()[0]))})")
-            spin_until(lambda: not waiting_for(), lambda: (
-                "the simulation's word that its subscriptions have matched the replayer's "
-                f"publishers ({names.LOCKSTEP_READY}; still missing: "
-                f"{', '.join(f'{n} {t}' for n, t in waiting_for()[:4])})"))
-        log.info(f"replaying {len(schedule)} commands from {bag} "
-                 f"({'lockstep with /clock' if lockstep else f'wall clock x{rate:g}'})")
-        sent = _send(schedule, pubs, grant if lockstep else None, clock, rate, spin_until)
-        if lockstep:
-            executor.spin_once(timeout_sec=0.1)
-        log.info(f"replayed {sent} commands")
-        return 0
-    finally:
-        executor.shutdown(timeout_sec=0.1)
-        node.destroy_node()
-        rclpy.try_shutdown(context=context)
+    def await_lockstep(self) -> None:
+        """Wait for the lockstep simulation's /clock and its word on every command topic."""
+        self.spin_until(lambda: not math.isnan(self.clock[0]),
+                        "/clock from the lockstep simulation "
+                        f"({', '.join(sorted(self.followers()[0]))})")
+        self.spin_until(lambda: not self.waiting_for(), lambda: (
+            "the simulation's word that its subscriptions have matched the replayer's "
+            f"publishers ({names.LOCKSTEP_READY}; still missing: "
+            f"{', '.join(f'{n} {t}' for n, t in self.waiting_for()[:4])})"))
+
+    def close(self) -> None:
+        """Stop the executor, destroy the node, shut its context down."""
+        import rclpy
+
+        self.executor.shutdown(timeout_sec=0.1)
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
 
 
 def _send(schedule: list[Command], pubs: dict, grant, clock: list[float], rate: float,
