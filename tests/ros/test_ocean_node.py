@@ -123,11 +123,13 @@ def test_surface_cloud_is_the_surface_around_the_boat(boatsim, probe):
     probe.node.create_subscription(PointCloud2, names.SURFACE_CLOUD, clouds.append, 10)
     probe.node.create_subscription(Odometry, "/odom", odoms.append, 1000)
 
+    def stamp(msg):
+        return msg.header.stamp.sec, msg.header.stamp.nanosec
+
     def pair():
         """A cloud received and the /odom received with its stamp, or None."""
-        at = {o.header.stamp.sec * 10**9 + o.header.stamp.nanosec: o for o in odoms}
-        return next(((c, at[k]) for c in clouds
-                     if (k := c.header.stamp.sec * 10**9 + c.header.stamp.nanosec) in at), None)
+        at = {stamp(o): o for o in odoms}
+        return next(((c, at[stamp(c)]) for c in clouds if stamp(c) in at), None)
 
     # The boat drifts meanwhile, and a --fast run may be tens of seconds in before the probe's
     # subscriptions match: the cloud is compared with where the boat was at its stamp.
