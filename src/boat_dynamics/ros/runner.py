@@ -212,6 +212,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     """
     sim = scenario.simulation
     fast = options.fast or not sim.realtime
+    # one process in real time: provisional, until the loop starts (_Loop._epoch_at_loop_start)
     epoch = options.epoch if options.epoch is not None else (0.0 if fast else time.time())
     clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
     if options.epoch is not None and not fast:  # joining a run that started at the epoch
@@ -458,7 +459,7 @@ class _Loop:
             return 0
         wall0 = self.clock.epoch  # real time: a late process catches up, no time is skipped
         if not self.fast:
-            self._serve_callbacks(wall0)  # --processes: the outputs at t are due at wall0 + t
+            self._serve_callbacks(wall0)  # real time: the outputs at t go out at wall0 + t
         if self.dynamics is not None:
             if self.options.resume is None:  # a resumed shard's were its predecessor's
                 self.dynamics.publish_outputs()
