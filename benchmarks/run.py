@@ -263,11 +263,60 @@ def _fleet_file(boats: int, model: str, folder: Path) -> Path:
     return path
 
 
-def _timed_cli(args: list[str]) -> tuple[float, float, float]:
-    """Run ``boatsim ARGS``; (loop real-time factor, s to the first step, s in all).
+def _roles(root: int) -> dict[int, str]:
+    """Pid -> role (parent, ocean, shard K/N, surface server) of ``root``'s process tree."""
+    children: dict[int, list[int]] = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                ppid = int(Path(f"/proc/{entry}/stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError):
+                continue
+            children.setdefault(ppid, []).append(int(entry))
+    roles, todo = {}, [root]
+    while todo:
+        pid = todo.pop()
+        todo += children.get(pid, [])
+        try:
+            words = Path(f"/proc/{pid}/cmdline").read_text().split("\0")
+        except OSError:
+            continue
+        roles[pid] = "parent" if pid == root else _role(words)
+    return roles
+
+
+def _role(words: list[str]) -> str:
+    """The role of a child of ``boatsim run`` from its command line."""
+    if "_node" in words:
+        role = words[words.index("_node") + 1]
+        return f"shard {words[words.index('--shard') + 1]}" if "--shard" in words else role
+    return "surface server" if "_surface" in words else "other"
+
+
+def _cpu_seconds(pids) -> dict[int, float]:
+    """Pid -> CPU seconds (user + system, all threads) so far, of those still there."""
+    tick = os.sysconf("SC_CLK_TCK")
+    out = {}
+    for pid in pids:
+        try:
+            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        out[pid] = (int(fields[11]) + int(fields[12])) / tick
+    return out
+
+
+def _timed_cli(args: list[str]) -> dict:
+    """Run ``boatsim ARGS``: its loop's real-time factor, its start, where its CPU went.
 
     The loop factor is the run's last status line (the first dynamics process's, counted
-    from its first step); the start is when that process logs "running".
+    from its first step); the start is when that process logs "running". Each process's CPU
+    over the loop is read from /proc (Linux) when that line appears and at each status line
+    after it (the last one comes as the loop ends): CPU seconds per simulated second, by role.
+
+    Returns:
+        factor (loop real-time factor), start (s to the first step), total (s in all),
+        cpu ({role: CPU s per simulated s over the loop}).
     """
     import re
     import subprocess
@@ -278,46 +327,74 @@ def _timed_cli(args: list[str]) -> tuple[float, float, float]:
                             stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
     started = math.nan
     lines = []
+    roles, first, last = {}, {}, {}
+    status = re.compile(r"^t\s+([\d.]+) s\s+x\s*([\d.]+)")
     for line in proc.stderr:
         lines.append(line)
         if math.isnan(started) and "running " in line and "boat(s)" in line:
             started = time.perf_counter() - t0
+            roles = _roles(proc.pid)
+            first = _cpu_seconds(roles)
+        elif (m := status.match(line)) and first:
+            last = {"t": float(m.group(1)), **_cpu_seconds(roles)}
     proc.wait()
     total = time.perf_counter() - t0
     factors = re.findall(r"t\s+[\d.]+ s\s+x\s*([\d.]+)", "".join(lines))
     if proc.returncode != 0 or not factors:
         raise RuntimeError(f"boatsim {' '.join(args)} failed:\n{''.join(lines[-20:])}")
-    return float(factors[-1]), started, total
+    cpu: dict[str, float] = {}
+    for pid, role in roles.items():
+        if pid in first and pid in last and last["t"] > 0:
+            cpu[role] = cpu.get(role, 0.0) + (last[pid] - first[pid]) / last["t"]
+    return {"factor": float(factors[-1]), "start": started, "total": total, "cpu": cpu}
+
+
+def _cpu_line(cpu: dict[str, float]) -> str:
+    """'parent 0.01, ocean 0.02, ...' (CPU s per simulated s), then their sum."""
+    parts = [f"{role} {s:.3f}" for role, s in sorted(cpu.items()) if s >= 0.0005]
+    return f"{', '.join(parts)}; in all {sum(cpu.values()):.3f}"
 
 
 def bench_scale(seconds: float) -> None:
     """One process against shards: `boatsim run --fast` as a user starts it (subprocesses).
 
-    Figures per configuration: the loop's real-time factor (best and range of 2), the
-    seconds from launch to the first step, and the throughput ratio of the best loops.
+    Figures per configuration: the loop's real-time factor (best and range of the runs), the
+    seconds from launch to the first step, and where the CPU went (CPU seconds per simulated
+    second of each process over the loop, from the best run); then the throughput ratio of
+    the best loops, and with 100 boats the median and range of the ratios of runs made in
+    turn (one process, then 2 shards: a change of this machine's speed hits both).
     """
+    import statistics
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
-        for boats, model, sim_s, shard_counts in ((10, "mesh", seconds, (1, 2)),
-                                                   (100, "mesh", seconds / 4, (1, 2)),
-                                                   (1000, "sample_points", 2.0, (1, 2))):
+        for boats, model, sim_s, shard_counts, repeats in (
+                (10, "mesh", seconds, (1, 2), 2), (100, "mesh", seconds, (1, 2), 5),
+                (1000, "sample_points", 2.0, (1, 2), 1)):
             path = _fleet_file(boats, model, Path(tmp))
-            best = {}
-            for shards in (0, *shard_counts):
-                extra = ["--shards", str(shards)] if shards else []
-                runs = [_timed_cli(["run", str(path), "--fast", "--duration", str(sim_s),
-                                    *extra]) for _ in range(2 if boats < 1000 else 1)]
-                loops = [r[0] for r in runs]
-                best[shards] = max(loops)
+            runs: dict[int, list[dict]] = {shards: [] for shards in (0, *shard_counts)}
+            for _ in range(repeats):  # in turn
+                for shards in runs:
+                    extra = ["--shards", str(shards)] if shards else []
+                    runs[shards].append(_timed_cli(["run", str(path), "--fast", "--duration",
+                                                    str(sim_s), *extra]))
+            for shards, rs in runs.items():
+                loops = [r["factor"] for r in rs]
+                best = max(rs, key=lambda r: r["factor"])
                 where = f"{shards} shard(s)" if shards else "one process"
                 print(f"  {boats:>4} {model} boats, {where:<12}: real-time factor "
                       f"{max(loops):6.2f} (loop; range {min(loops):.2f}-{max(loops):.2f}), "
-                      f"first step after {min(r[1] for r in runs):5.1f} s, "
-                      f"{min(r[2] for r in runs):5.1f} s in all")
+                      f"first step after {min(r['start'] for r in rs):5.1f} s, "
+                      f"{min(r['total'] for r in rs):5.1f} s in all")
+                print(f"         CPU s per simulated s (best run): {_cpu_line(best['cpu'])}")
             for shards in shard_counts:
+                pairs = [b["factor"] / a["factor"] for a, b in zip(runs[0], runs[shards],
+                                                                   strict=True)]
+                spread = (f"; runs in turn: median {statistics.median(pairs):.2f}, range "
+                          f"{min(pairs):.2f}-{max(pairs):.2f}" if len(pairs) > 2 else "")
+                best = max(r["factor"] for r in runs[shards]) / max(r["factor"] for r in runs[0])
                 print(f"  {boats:>4} boats: {shards} shard(s) / one process throughput "
-                      f"{best[shards] / best[0]:.2f}")
+                      f"{best:.2f} (best loops){spread}")
 
 
 def bench_split() -> None:
