@@ -387,6 +387,43 @@ def _damped(base: np.ndarray, d: np.ndarray, step: np.ndarray, was: np.ndarray, 
     return cand, sa, rc, ec
 
 
+def _fall_back(back: np.ndarray, worse: np.ndarray, base: np.ndarray, d: np.ndarray,
+               ra: np.ndarray, step: np.ndarray, det: np.ndarray, w: _Weights,
+               out: tuple[np.ndarray, ...]) -> None:
+    """Where a Newton step did not shrink |F|: the fixed-point step, or a damped Newton step.
+
+    The fixed-point step shrinks |F| by sum Q k a < 1; near a cusp (det J < _CUSP_DET) a
+    damped Newton step is taken instead where it does better (:func:`_damped`).
+
+    Args:
+        back: (W,) those points' rows in ``base`` and ``d`` (all of the batch's points).
+        worse: (W,) their rows in the iteration's R rows (``ra``, ``step``, ``det``,
+            ``out``).
+        base: (N, M) rad, the points' phases at d = 0.
+        d: (N, 2) m, the corrections before the step.
+        ra: (R, 2) m, the residuals before the step.
+        step: (R, 2) m, the Newton steps that did not shrink them.
+        det: (R,) det J of those steps.
+        w: the sea's weights.
+        out: (cand, theta, sa, rc, ec): the step's corrections, phases, sines, residuals and
+            |residuals|, updated in place at ``worse``.
+    """
+    cand, theta, sa, rc, ec = out
+    cand[worse] = d[back] - ra[worse]
+    theta[worse] = base[back] + cand[worse] @ w.kd
+    sa[worse] = np.sin(theta[worse])
+    rc[worse] = cand[worse] - sa[worse] @ w.qad
+    ec[worse] = np.hypot(rc[worse, 0], rc[worse, 1])
+    near = det[worse] < _CUSP_DET
+    if near.any():
+        at, near = back[near], worse[near]
+        dc, ds, dr, de = _damped(base[at], d[at], step[near], ec[near], w)
+        take = de < ec[near]
+        pick = near[take]
+        cand[pick], sa[pick], rc[pick], ec[pick] = dc[take], ds[take], dr[take], de[take]
+        theta[pick] = base[at[take]] + cand[pick] @ w.kd
+
+
 def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: Precision, invert: bool,
            tol: float, max_iter: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Rest positions of world points and sin/cos of their phases.
@@ -435,23 +472,11 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: Precision, invert
         rc = cand - sa @ w.qad
         ec = np.hypot(rc[:, 0], rc[:, 1])
         was = err[rows]
-        worse = (np.flatnonzero((ec >= was) & (was > tol)) if (ec >= was).any()
-                 else np.empty(0, dtype=np.intp))
-        if worse.size:  # fixed-point step: shrinks |F| by sum Q k a < 1
-            back = worse if full else active[worse]
-            cand[worse] = d[back] - ra[worse]
-            theta[worse] = base[back] + cand[worse] @ w.kd
-            sa[worse] = np.sin(theta[worse])
-            rc[worse] = cand[worse] - sa[worse] @ w.qad
-            ec[worse] = np.hypot(rc[worse, 0], rc[worse, 1])
-            near = worse[det[worse] < _CUSP_DET]  # ... unless a damped Newton step does better
-            if near.size:
-                at = near if full else active[near]
-                dc, ds, dr, de = _damped(base[at], d[at], step[near], ec[near], w)
-                take = de < ec[near]
-                pick = near[take]
-                cand[pick], sa[pick], rc[pick], ec[pick] = dc[take], ds[take], dr[take], de[take]
-                theta[pick] = base[at[take]] + cand[pick] @ w.kd
+        if (ec >= was).any():
+            worse = np.flatnonzero((ec >= was) & (was > tol))
+            if worse.size:
+                _fall_back(worse if full else active[worse], worse, base, d, ra, step, det,
+                           w, (cand, theta, sa, rc, ec))
         if active.size == n:
             d, s, c, r, err = cand, sa, np.cos(theta), rc, ec
         elif full:
