@@ -311,8 +311,9 @@ def _timed_cli(args: list[str]) -> dict:
 
     The loop factor is the run's last status line (the first dynamics process's, counted
     from its first step); the start is when that process logs "running". Each process's CPU
-    over the loop is read from /proc (Linux) when that line appears and at each status line
-    after it (the last one comes as the loop ends): CPU seconds per simulated second, by role.
+    over the loop is read from /proc (Linux) when that line appears and at the last status
+    line (it comes as the loop ends), or, for a process that has ended by then, 0.05 s or less
+    before it ended: CPU seconds per simulated second, by role.
 
     Returns:
         factor (loop real-time factor), start (s to the first step), total (s in all),
@@ -321,23 +322,34 @@ def _timed_cli(args: list[str]) -> dict:
     import re
     import subprocess
     import sys
+    import threading
 
     t0 = time.perf_counter()
     proc = subprocess.Popen([sys.executable, "-m", "boat_dynamics", *args],
                             stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
     started = math.nan
     lines = []
-    roles, first, last = {}, {}, {}
+    roles: dict[int, str] = {}
+    first, last, latest = {}, {}, {}  # pid -> CPU s (last: and "t", simulated s)
+
+    def sample() -> None:  # the latest reading of each process, for those that end early
+        while proc.poll() is None:
+            latest.update(_cpu_seconds(list(roles)))
+            time.sleep(0.05)
+
+    sampler = threading.Thread(target=sample, daemon=True)
+    sampler.start()
     status = re.compile(r"^t\s+([\d.]+) s\s+x\s*([\d.]+)")
     for line in proc.stderr:
         lines.append(line)
         if math.isnan(started) and "running " in line and "boat(s)" in line:
             started = time.perf_counter() - t0
-            roles = _roles(proc.pid)
+            roles.update(_roles(proc.pid))
             first = _cpu_seconds(roles)
         elif (m := status.match(line)) and first:
-            last = {"t": float(m.group(1)), **_cpu_seconds(roles)}
+            last = {**latest, **_cpu_seconds(list(roles)), "t": float(m.group(1))}
     proc.wait()
+    sampler.join()
     total = time.perf_counter() - t0
     factors = re.findall(r"t\s+[\d.]+ s\s+x\s*([\d.]+)", "".join(lines))
     if proc.returncode != 0 or not factors:
