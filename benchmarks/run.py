@@ -263,16 +263,20 @@ def _fleet_file(boats: int, model: str, folder: Path) -> Path:
     return path
 
 
+def _stat(pid: int) -> list[str] | None:
+    """The fields of /proc/PID/stat after the command name (state, ppid, ...), or None."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+
+
 def _roles(root: int) -> dict[int, str]:
     """Pid -> role (parent, ocean, shard K/N, surface server) of ``root``'s process tree."""
     children: dict[int, list[int]] = {}
     for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                ppid = int(Path(f"/proc/{entry}/stat").read_text().rsplit(")", 1)[1].split()[1])
-            except (OSError, IndexError):
-                continue
-            children.setdefault(ppid, []).append(int(entry))
+        if entry.isdigit() and (fields := _stat(int(entry))):
+            children.setdefault(int(fields[1]), []).append(int(entry))
     roles, todo = {}, [root]
     while todo:
         pid = todo.pop()
@@ -298,11 +302,8 @@ def _cpu_seconds(pids) -> dict[int, float]:
     tick = os.sysconf("SC_CLK_TCK")
     out = {}
     for pid in pids:
-        try:
-            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        out[pid] = (int(fields[11]) + int(fields[12])) / tick
+        if fields := _stat(pid):
+            out[pid] = (int(fields[11]) + int(fields[12])) / tick
     return out
 
 
@@ -330,7 +331,8 @@ def _timed_cli(args: list[str]) -> dict:
     started = math.nan
     lines = []
     roles: dict[int, str] = {}
-    first, last, latest = {}, {}, {}  # pid -> CPU s (last: and "t", simulated s)
+    first, last, latest = {}, {}, {}  # pid -> CPU s
+    end_t = 0.0  # s, the simulation time of the last status line
 
     def sample() -> None:  # the latest reading of each process, for those that end early
         while proc.poll() is None:
@@ -347,7 +349,7 @@ def _timed_cli(args: list[str]) -> dict:
             roles.update(_roles(proc.pid))
             first = _cpu_seconds(roles)
         elif (m := status.match(line)) and first:
-            last = {**latest, **_cpu_seconds(list(roles)), "t": float(m.group(1))}
+            last, end_t = {**latest, **_cpu_seconds(list(roles))}, float(m.group(1))
     proc.wait()
     sampler.join()
     total = time.perf_counter() - t0
@@ -356,8 +358,8 @@ def _timed_cli(args: list[str]) -> dict:
         raise RuntimeError(f"boatsim {' '.join(args)} failed:\n{''.join(lines[-20:])}")
     cpu: dict[str, float] = {}
     for pid, role in roles.items():
-        if pid in first and pid in last and last["t"] > 0:
-            cpu[role] = cpu.get(role, 0.0) + (last[pid] - first[pid]) / last["t"]
+        if pid in first and pid in last and end_t > 0:
+            cpu[role] = cpu.get(role, 0.0) + (last[pid] - first[pid]) / end_t
     return {"factor": float(factors[-1]), "start": started, "total": total, "cpu": cpu}
 
 
@@ -404,9 +406,9 @@ def bench_scale(seconds: float) -> None:
                                                                    strict=True)]
                 spread = (f"; runs in turn: median {statistics.median(pairs):.2f}, range "
                           f"{min(pairs):.2f}-{max(pairs):.2f}" if len(pairs) > 2 else "")
-                best = max(r["factor"] for r in runs[shards]) / max(r["factor"] for r in runs[0])
+                ratio = max(r["factor"] for r in runs[shards]) / max(r["factor"] for r in runs[0])
                 print(f"  {boats:>4} boats: {shards} shard(s) / one process throughput "
-                      f"{best:.2f} (best loops){spread}")
+                      f"{ratio:.2f} (best loops){spread}")
 
 
 def bench_split() -> None:
