@@ -83,27 +83,34 @@ def bench_boat_step() -> None:
           "one boat alone, and per boat in a fleet (best of 15 timed chunks)")
     sea = _sea(16)
     inputs = BoatInputs(1.0, 0.2)
+    seed = {"buoyancy": {"pressure": "hydrostatic"}, "hydrodynamics": {"coefficients": "none"}}
     cases = (
         ("sample points, 7 (boat layout)", {"buoyancy": {"model": "sample_points",
                                                           "layout": "boat"}}, (10, 100)),
-        ("mesh box, 12 triangles", {}, (10, 100)),
-        ("mesh box, 972 triangles", {"hull": {"type": "box", "subdivisions": 9}}, (10,)),
+        # a boat that sets nothing until 2026-12 (issue 32): the seed notes' mesh model
+        ("seed notes' mesh box, 12 triangles", seed, (10, 100)),
+        ("seed notes' mesh box, 972 triangles",
+         {**seed, "hull": {"type": "box", "subdivisions": 9}}, (10,)),
         ("mesh box, 12 tri, coefficients, resonance", _coefficients("resonance"), (10, 100)),
         ("mesh box, 12 tri, coefficients, Cummins", _coefficients("cummins"), (10, 100)),
         ("mesh box, 12 tri, water velocity over the hull",
-         {"damping": {"water_velocity": "hull"}}, (10, 100)),
-        # the default scenario's boat since issue 10 (the line above "mesh box, 12 triangles"
-        # is the old one): linear seakeeping with its shipped coefficient file
-        ("default boat: linear, file, Cummins, hull water",
+         {**seed, "damping": {"water_velocity": "hull"}}, (10, 100)),
+        # the default scenario's boat from issue 10 to 2026-12: linear seakeeping
+        ("linear seakeeping: file, Cummins, hull water",
          {"center_of_mass": [0.0, 0.0, -0.2], "buoyancy": {"pressure": "linear"},
           "hydrodynamics": {"coefficients": "auto"},
           "damping": {"linear": [500.0, 4000.0, 0.0, 1000.0, 0.0, 3000.0],
                       "water_velocity": "hull"}}, (10, 100)),
-        # panelled by pipeline.init for this sea's shortest wave (so initialized in it)
-        ("mesh box, Froude-Krylov", {"buoyancy": {"pressure": "froude_krylov"}}, (10,)),
+        # every mesh boat's default since 2026-12 (issue 32), panelled by pipeline.init for
+        # this sea's shortest wave (so initialized in it): Froude-Krylov pressure on the
+        # wetted hull, its coefficients (auto), Cummins, the added mass at speed
+        ("default (sets nothing): Froude-Krylov, file, Cummins", {}, (10, 100)),
+        ("mesh box, Froude-Krylov, no coefficients",
+         {"buoyancy": {"pressure": "froude_krylov"}, "hydrodynamics": {"coefficients": "none"}},
+         (10,)),
     )
     for label, boat, fleet_sizes in cases:
-        fk = "Froude" in label
+        fk = "Froude" in label or not boat
         sc = _initialized(parse_scenario({"boats": [boat]}), sea if fk else None)
         params, initial = sc.boats[0].params, sc.boats[0].initial
         if fk:
@@ -147,7 +154,7 @@ def bench_boat_step() -> None:
 
 def _coefficients(radiation: str) -> dict:
     """The default box with its potential-flow file (diffraction; radiation as given)."""
-    return {"center_of_mass": [0.0, 0.0, -0.2],
+    return {"center_of_mass": [0.0, 0.0, -0.2], "buoyancy": {"pressure": "hydrostatic"},
             "hydrodynamics": {"coefficients": str(_BOX_COEFFICIENTS), "radiation": radiation}}
 
 

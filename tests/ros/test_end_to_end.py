@@ -327,7 +327,10 @@ def test_thrust_stops_after_cmd_timeout_set_at_run_time(boatsim, probe, tmp_path
     from rosbags.highlevel import AnyReader
 
     flat = tmp_path / "flat.yaml"
-    flat.write_text("boats:\n  - damping: {linear: [500, 4000, 12000, 6000, 12000, 3000]}\n")
+    flat.write_text("boats:\n  - damping: {linear: [500, 4000, 12000, 6000, 12000, 3000]}\n"
+                    "    buoyancy: {pressure: hydrostatic}\n"  # the closed form below: no
+                    "    hydrodynamics: {coefficients: none}\n")  # added mass
+
     bag = tmp_path / "bag"
     # The speeds are read from the run's own recording, which holds every /odom: under --fast
     # on a busy machine the probe's depth-10 subscription may miss some (CI lost those of the

@@ -1,5 +1,6 @@
 """record, compare, plot and teleop: the regression-testing tools, end to end."""
 
+import math
 import os
 import pty
 import signal
@@ -210,7 +211,10 @@ def test_two_lockstep_replays_give_identical_outputs(boatsim, tmp_path):
     stamps = [s / 1e9 for s, _ in seen["/cmd_thrust"]]
     assert stamps == pytest.approx([t for t, topic, _ in plan if topic == "/cmd_thrust"],
                                    abs=1e-9)
-    thrust_at = {round(s / 1e9, 3): m.wrench.force.x for s, m in seen["/wrench/thrust"]}
+    # the default boat's outboard turns with the rudder command: the thrust's signed size
+    thrust_at = {round(s / 1e9, 3): math.copysign(math.hypot(m.wrench.force.x, m.wrench.force.y),
+                                                  m.wrench.force.x)
+                 for s, m in seen["/wrench/thrust"]}
     assert thrust_at[2.3] == pytest.approx(2000.0) and thrust_at[2.4] == pytest.approx(-1000.0)
 
 

@@ -2,8 +2,8 @@
 
 Each force model is a function in its own module returning force and torque (buoyancy:
 :mod:`.mesh_buoyancy` and :mod:`.buoyancy`; :mod:`.hull_drag`, :mod:`.damping`,
-:mod:`.propulsion`, :mod:`.rudder`); this module only evaluates them group by group, from the
-surface contact of the state, and adds them up. :func:`boat_dynamics.physics.pipeline.step`
+:mod:`.propulsion`, :mod:`.rudder`, :mod:`.added_mass`); this module only evaluates them
+group by group, from the surface contact of the state, and adds them up. :func:`boat_dynamics.physics.pipeline.step`
 integrates the total; :mod:`.tuning` reads the buoyancy of trial poses from here.
 """
 
@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from boat_dynamics.physics.added_mass import added_mass_coriolis
 from boat_dynamics.physics.buoyancy import sample_point_group
 from boat_dynamics.physics.contact import Contact, GroupContact
 from boat_dynamics.physics.damping import damping, radiation_damping
@@ -65,13 +66,17 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
     if system.radiation is not None:  # potential-flow coefficients: on the body's velocity
         damp = damp + radiation_damping(system.radiation, state.velocity,
                                         state.angular_velocity)
+    carried = contact.immersion  # a hull out of the water leaves its fluid behind
     if system.memory is not None and state.memory is not None:  # Cummins: the waves made
-        damp = damp + Wrench(*memory_wrench(system.memory.output, state.memory))
+        made = memory_wrench(system.memory.output, state.memory)
+        damp = damp + Wrench(made[0] * carried[:, None], made[1] * carried[:, None])
+    if system.coupled:  # a 6 x 6 added mass at forward speed: the Munk moment
+        damp = damp + _added_mass_at_speed(system, state, rot, environment, carried)
     push = _per_group(system, lambda g: thrusters_wrench(
         g.propulsion, state.throttle[g.index],
         [inputs.angle_of(j)[g.index] for j in range(len(g.propulsion))], com[g.index]))
     steer = _per_group(system, lambda g: rudder_wrench(
-        g.rudder, inputs.rudder[g.index], relative[g.index, 0],
+        g.rudder, inputs.rudder[g.index], relative[g.index], state.angular_velocity[g.index],
         system.water_density[g.index], com[g.index]))
     weight = Wrench((system.mass * system.gravity)[:, None] * -rot[:, 2, :], np.zeros((b, 3)))
     buoy, drag = Wrench(*buoy), Wrench(*drag)
@@ -105,9 +110,38 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
                         gravity=weight, total=total), normals_ref)
 
 
+def _added_mass_at_speed(system: System, state: FleetState, rot: np.ndarray,
+                         environment: Environment | None, carried: np.ndarray) -> Wrench:
+    """(B, 3) the ``coupled`` boats' added-mass forces at speed (:mod:`.added_mass`).
+
+    The horizontal -C_A(nu) nu, nu relative to the current (not to the waves' orbital motion),
+    of the added mass each hull carries (``carried``: :func:`.contact.immersion`); zero for
+    the other boats.
+    """
+    i = np.array(system.coupled, dtype=np.intp)
+    velocity = _through_current(state.velocity[i], rot[i], environment)
+    added = system.added_mass_matrix * carried[i, None, None]
+    total = added_mass_coriolis(added, velocity, state.angular_velocity[i])
+    if i.shape[0] == system.count:
+        return total
+    force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
+    force[i], torque[i] = total.force, total.torque
+    return Wrench(force, torque)
+
+
+def _through_current(velocity: np.ndarray, rot: np.ndarray,
+                    environment: Environment | None) -> np.ndarray:
+    """(B, 3) m/s, body velocities relative to the current (the velocities without one)."""
+    if environment is None or environment.current_speed <= 0.0:
+        return velocity
+    return velocity - np.einsum("bji,j->bi", rot, environment.current)
+
+
 def _excitation(system: System, state: FleetState, contact: Contact
                 ) -> tuple[Wrench, Wrench | None]:
     """The diffraction wrench, and the linear Froude-Krylov one, of the boats with coefficients.
+
+    The diffraction at each boat's encounter frequencies (its velocity over ground).
 
     (B, 3) forces and torques, body frames; the Froude-Krylov wrench only for boats with
     ``linear`` pressure (None when there is none). Boats sharing a coefficient set, a wave
@@ -127,13 +161,14 @@ def _excitation(system: System, state: FleetState, contact: Contact
         ref = state.position[idx] - np.einsum("bij,bj->bi", rot, system.center_of_mass[idx])
         args = (first.hydro, contact.sea.filtered(first.min_wavelength), ref[:, :2],
                 np.arctan2(rot[:, 1, 0], rot[:, 0, 0]), state.t)
+        moving = np.einsum("bij,bj->bi", rot, state.velocity[idx])[:, :2]  # over ground
         if flat:
-            scattered, incident = excitation_wrench(*args, "both")
+            scattered, incident = excitation_wrench(*args, "both", moving)
             force[idx], torque[idx] = scattered[:, :3], scattered[:, 3:]
             fk_force[idx], fk_torque[idx] = incident[:, :3], incident[:, 3:]
             linear = True
         else:
-            force[idx], torque[idx] = excitation_wrench(*args, "diffraction")
+            force[idx], torque[idx] = excitation_wrench(*args, "diffraction", moving)
     return Wrench(force, torque), (Wrench(fk_force, fk_torque) if linear else None)
 
 

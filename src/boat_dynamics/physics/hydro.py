@@ -198,7 +198,9 @@ def _canonical(name: str, value, dtype: str) -> bytes:
     """Bytes of one named array: name, dtype, shape and little-endian data."""
     a = np.asarray(value, dtype=np.float64 if dtype == "<f8" else np.int64)
     if dtype == "<f8":
-        a = np.round(a, 9) + 0.0  # + 0.0 maps -0.0 to 0.0
+        with np.errstate(over="ignore", invalid="ignore"):  # 1e308 m of depth: x 1e9 overflows
+            rounded = np.round(a, 9)
+        a = np.where(np.isfinite(rounded), rounded, a) + 0.0  # + 0.0 maps -0.0 to 0.0
     a = np.ascontiguousarray(a.astype(dtype))
     return f"{name}:{dtype}:{a.shape}:".encode() + a.tobytes()
 

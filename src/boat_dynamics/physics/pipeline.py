@@ -217,14 +217,15 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
         p, q, v, w = integrate_coupled(state.position, state.orientation, state.velocity,
                                        state.angular_velocity, acting.total.force, torque,
                                        system.mass, system.inertia_tensor,
-                                       system.mass_matrix_inverse, dt)
+                                       _mass_inverse(system, contact.immersion), dt)
     else:
         p, q, v, w = integrate(state.position, state.orientation, state.velocity,
                                state.angular_velocity, acting.total.force, torque,
                                system.effective_mass, system.effective_inertia, dt,
                                system.inertia_products)
         if system.coupled:
-            _integrate_coupled(system, state, acting.total.force, torque, dt, (p, q, v, w))
+            _integrate_coupled(system, state, acting.total.force, torque, dt, (p, q, v, w),
+                               contact.immersion)
     v = reflect_off_keel(v, system.keel_rate, dt)
     if system.decay is not None:
         v, w = velocity_decay(v, w, system.decay, dt)
@@ -265,14 +266,26 @@ def _swept_now(system: System, state: FleetState, groups: list) -> np.ndarray | 
 
 
 def _integrate_coupled(system: System, state: FleetState, force: np.ndarray,
-                       torque: np.ndarray, dt: float, into: tuple[np.ndarray, ...]) -> None:
+                       torque: np.ndarray, dt: float, into: tuple[np.ndarray, ...],
+                       immersion: np.ndarray) -> None:
     """Overwrite the ``coupled`` boats' rows of ``into`` (p, q, v, w) by the 6 x 6 step."""
     i = np.array(system.coupled, dtype=np.intp)
     new = integrate_coupled(state.position[i], state.orientation[i], state.velocity[i],
                             state.angular_velocity[i], force[i], torque[i], system.mass[i],
-                            system.inertia_tensor, system.mass_matrix_inverse, dt)
+                            system.inertia_tensor, _mass_inverse(system, immersion), dt)
     for array, rows in zip(into, new, strict=True):
         array[i] = rows
+
+
+def _mass_inverse(system: System, immersion: np.ndarray) -> np.ndarray:
+    """(C, 6, 6) (M_RB + s A)^-1 of the ``coupled`` boats, s their immersion (:mod:`.contact`).
+
+    The precomputed inverse while every one of them is afloat (s = 1).
+    """
+    s = immersion[np.array(system.coupled, dtype=np.intp)]
+    if np.all(s == 1.0):
+        return system.mass_matrix_inverse
+    return np.linalg.inv(system.rigid_mass_matrix + s[:, None, None] * system.added_mass_matrix)
 
 
 def _memory_after(system: System, state: FleetState, after: FleetState, dt: float

@@ -144,7 +144,7 @@ def rigid_body_matrix(params: BoatParams) -> np.ndarray:
 
 
 def potential_flow_rao(hydro: HydroCoefficients, mass_matrix: np.ndarray, omega: float,
-                       direction: float) -> np.ndarray:
+                       direction: float, viscous: np.ndarray | None = None) -> np.ndarray:
     """(6,) complex motion per metre of wave amplitude by linear potential flow.
 
     Args:
@@ -153,6 +153,8 @@ def potential_flow_rao(hydro: HydroCoefficients, mass_matrix: np.ndarray, omega:
             (:func:`rigid_body_matrix`).
         omega: rad/s.
         direction: rad, the waves' direction of travel relative to the bow.
+        viscous: (6,) linear damping added to B(omega) on the body's own velocity (the
+            boat's viscous roll, pitch and yaw damping act so), or None.
 
     Returns:
         Surge, sway, heave (m/m) of the centre of mass, roll, pitch, yaw (rad/m), complex
@@ -161,6 +163,9 @@ def potential_flow_rao(hydro: HydroCoefficients, mass_matrix: np.ndarray, omega:
     """
     w, beta = np.array([omega]), np.array([direction])
     excitation = (hydro.diffraction_at(w, beta) + hydro.froude_krylov_at(w, beta))[0]
+    damping = hydro.damping_at(omega)
+    if viscous is not None:
+        damping = damping + np.diag(viscous)
     impedance = (-omega**2 * (mass_matrix + hydro.added_mass_at(omega))
-                 - 1j * omega * hydro.damping_at(omega) + hydro.hydrostatic_stiffness)
+                 - 1j * omega * damping + hydro.hydrostatic_stiffness)
     return np.linalg.solve(impedance, excitation)

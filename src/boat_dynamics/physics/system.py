@@ -315,6 +315,8 @@ class System:
         coupled: the boats with a 6 x 6 added mass (``added_mass_matrix``), integrated with
             :func:`boat_dynamics.physics.rigid_body.integrate_coupled`.
         mass_matrix_inverse: (C, 6, 6) (M_RB + A)^-1 of the ``coupled`` boats, or None.
+        added_mass_matrix: (C, 6, 6) their added mass A, or None.
+        rigid_mass_matrix: (C, 6, 6) their M_RB, or None.
         inertia_tensor: (C, 3, 3) kg m^2, their rigid-body inertia tensors, or None.
         memory: the boats' radiation memories stacked and padded to N =
             :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes ((B, N) poles, (B, N, 6)
@@ -347,6 +349,8 @@ class System:
     diffracting: tuple[int, ...]
     coupled: tuple[int, ...] = ()
     mass_matrix_inverse: np.ndarray | None = None
+    added_mass_matrix: np.ndarray | None = None
+    rigid_mass_matrix: np.ndarray | None = None
     inertia_tensor: np.ndarray | None = None
     memory: RadiationMemory | None = None
     mooring: Mooring | None = None
@@ -420,12 +424,13 @@ def _coupling(ps: Sequence[BoatParams]) -> dict:
     if coupled:
         tensors = np.array([inertia_tensor(ps[i].inertia, ps[i].inertia_products)
                             for i in coupled])
-        matrices = np.zeros((len(coupled), 6, 6))
+        rigid = np.zeros((len(coupled), 6, 6))
         for k, i in enumerate(coupled):
-            matrices[k, :3, :3] = ps[i].mass * np.eye(3)
-            matrices[k, 3:, 3:] = tensors[k]
-            matrices[k] += ps[i].added_mass_matrix
-        out.update(mass_matrix_inverse=np.linalg.inv(matrices), inertia_tensor=tensors)
+            rigid[k, :3, :3] = ps[i].mass * np.eye(3)
+            rigid[k, 3:, 3:] = tensors[k]
+        added = np.array([ps[i].added_mass_matrix for i in coupled], dtype=float)
+        out.update(mass_matrix_inverse=np.linalg.inv(rigid + added), inertia_tensor=tensors,
+                   added_mass_matrix=added, rigid_mass_matrix=rigid)
     memories = [p.radiation_memory for p in ps]
     if any(m is not None for m in memories):
         calm = RadiationMemory(np.zeros(0, complex), np.zeros((0, 6), complex),

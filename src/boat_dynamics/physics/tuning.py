@@ -122,12 +122,16 @@ def critical_damping(params: BoatParams, ratios: np.ndarray, z0: float | None = 
     """Linear damping (6,) giving damping ratios zeta = [heave, roll, pitch] (surge/sway/yaw 0).
 
     b = zeta * 2 sqrt(k m) per DOF, k from :func:`hydrostatic_stiffness`, m the rigid-body
-    mass or inertia plus added mass. A DOF with no restoring stiffness (k <= 0: unstable in
-    roll, say) gets no damping from here. ``z0``: the equilibrium height, if known.
+    mass or inertia plus added mass (the diagonal ``added_mass``, or of the 6 x 6
+    ``added_mass_matrix`` when there is one: potential flow's A_inf). A DOF with no restoring
+    stiffness (k <= 0: unstable in roll, say) gets no damping from here. ``z0``: the
+    equilibrium height, if known.
     """
     k = hydrostatic_stiffness(replace(params, damping_linear=np.zeros(6)), z0)
-    m = np.array([params.mass + params.added_mass[2], params.inertia[0] + params.added_mass[3],
-                  params.inertia[1] + params.added_mass[4]])
+    added = (params.added_mass if params.added_mass_matrix is None
+             else np.diag(params.added_mass_matrix))
+    m = np.array([params.mass + added[2], params.inertia[0] + added[3],
+                  params.inertia[1] + added[4]])
     b = np.asarray(ratios, dtype=float) * 2.0 * np.sqrt(np.maximum(k, 0.0) * m)
     out = np.zeros(6)
     out[[2, 3, 4]] = b

@@ -24,6 +24,7 @@ from boat_dynamics.physics.seakeeping import (
     regular_wave_response,
     rigid_body_matrix,
 )
+from boat_dynamics.physics.tuning import derive
 from ocean_sim.physics.waves import angular_frequency
 
 __all__ = ["DEFAULT_DIRECTIONS_DEG", "DEFAULT_WAVELENGTHS", "RaoError", "RaoPoint",
@@ -101,7 +102,7 @@ def rao_points(scenario: Scenario, boat: str | None = None,
     spec = _boat(scenario, boat)
     params, sea = spec.params, scenario.sea
     length = params.hull.length
-    mass = rigid_body_matrix(params)
+    curve = theory_curve(params, sea.gravity, sea.depth)
     points = []
     for direction in np.radians(np.asarray(directions_deg, dtype=float)):
         for multiple in wavelengths:
@@ -109,10 +110,8 @@ def rao_points(scenario: Scenario, boat: str | None = None,
             a = amplitude or min(0.005 * length, 0.05 * wavelength / (2 * math.pi))
             r = regular_wave_response(params, wavelength, float(direction), a,
                                       gravity=sea.gravity, depth=sea.depth)
-            theory = None
-            if params.hydro is not None:
-                theory = np.abs(potential_flow_rao(params.hydro, mass, r.omega,
-                                                   float(direction))[2:5])
+            theory = None if curve is None else curve(np.array([wavelength]),
+                                                      float(direction))[0]
             points.append(RaoPoint(r, theory))
     return points
 
@@ -137,16 +136,20 @@ def theory_curve(params: BoatParams, gravity: float, depth: float
                  ) -> Callable[[np.ndarray, float], np.ndarray] | None:
     """Potential flow's |heave|, |roll|, |pitch| at wavelengths (m) and a direction (rad).
 
-    None for a boat without coefficients.
+    With the boat's own linear viscous damping in roll, pitch and yaw (on its rates, as it is
+    stepped; its viscous heave, sway and surge damping act on the velocity through the moving
+    water and are left out). None for a boat without coefficients.
     """
     if params.hydro is None:
         return None
     mass = rigid_body_matrix(params)
+    viscous = np.zeros(6)
+    viscous[3:] = (derive(params) if params.derive is not None else params).damping_linear[3:]
 
     def curve(wavelengths: np.ndarray, direction: float) -> np.ndarray:
         omega = angular_frequency(2 * math.pi / np.asarray(wavelengths), gravity, depth)
-        return np.array([np.abs(potential_flow_rao(params.hydro, mass, float(w),
-                                                   direction)[2:5]) for w in omega])
+        return np.array([np.abs(potential_flow_rao(params.hydro, mass, float(w), direction,
+                                                   viscous)[2:5]) for w in omega])
 
     return curve
 

@@ -676,7 +676,7 @@ def pressure_head(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray, z: np
     ar = wf.arrays
     eta = np.asarray(heights, dtype=float)
     cos_theta = np.cos(component_phases(wf, rest_xy, t))
-    if math.isinf(wf.depth):
+    if _deep(wf):
         decay = np.exp(np.multiply.outer(np.minimum(z - eta, 0.0), ar.k))
     else:
         h = wf.depth
@@ -689,6 +689,15 @@ def pressure_head(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray, z: np
     return (cos_theta * decay) @ ar.a - z
 
 
+def _deep(wf: WaveField) -> bool:
+    """Whether every component sees deep water: depth inf, or k h > 350 (e^{-2 k h} < 1e-304).
+
+    The finite-depth decays would then differ from deep water's by less than a float's
+    rounding, and their products h (z - eta) and k h overflow for a depth near 1e308 m.
+    """
+    return math.isinf(wf.depth) or float(wf.arrays.k.min()) > 350.0 / wf.depth
+
+
 def _stretched_decay(wf: WaveField, eta: np.ndarray, z: np.ndarray
                      ) -> tuple[np.ndarray, np.ndarray]:
     """(N, M) horizontal and vertical depth decays of linear orbital velocity, Wheeler-stretched.
@@ -698,7 +707,7 @@ def _stretched_decay(wf: WaveField, eta: np.ndarray, z: np.ndarray
     exponentials that do not overflow for k h > 710.
     """
     ar = wf.arrays
-    if math.isinf(wf.depth):
+    if _deep(wf):
         decay = np.exp(np.multiply.outer(np.minimum(z - eta, 0.0), ar.k))
         return decay, decay
     h = wf.depth

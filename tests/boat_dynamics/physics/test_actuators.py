@@ -5,7 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from ready_scenarios import ready
+from ready_scenarios import SEED_MODEL, ready
 
 from boat_dynamics.physics.boat import BoatInputs, initial_state, step
 from boat_dynamics.physics.keel import reflect_off_keel
@@ -46,25 +46,60 @@ def test_steerable_nozzle_turns_the_bow_to_port_for_a_positive_angle():
     assert fixed.torque[2] == 0.0
 
 
+def _ahead(u: float, v: float = 0.0) -> np.ndarray:
+    return np.array([u, v, 0.0])
+
+
+STILL = np.zeros(3)
+
+
 def test_rudder_models():
     lift = Rudder("lift", math.radians(35), 0.25, 1.0, np.array([-2.0, 0, -0.5]))
-    w1 = rudder_wrench(lift, 0.3, 2.0, 1025.0, COM)
-    w2 = rudder_wrench(lift, 0.3, 4.0, 1025.0, COM)
+    w1 = rudder_wrench(lift, 0.3, _ahead(2.0), STILL, 1025.0, COM)
+    w2 = rudder_wrench(lift, 0.3, _ahead(4.0), STILL, 1025.0, COM)
     assert w1.force[1] == pytest.approx(-0.5 * 1025 * 0.25 * 4.0 * math.sin(0.3))
     assert w2.torque[2] == pytest.approx(4 * w1.torque[2]) and w1.torque[2] > 0
-    assert rudder_wrench(lift, 0.3, -2.0, 1025.0, COM).torque[2] < 0  # astern: reversed
-    assert rudder_wrench(lift, 0.3, 0.0, 1025.0, COM).torque[2] == 0.0
+    assert rudder_wrench(lift, 0.3, _ahead(-2.0), STILL, 1025.0, COM).torque[2] < 0  # astern
+    assert rudder_wrench(lift, 0.3, _ahead(0.0), STILL, 1025.0, COM).torque[2] == 0.0
 
     arcade = Rudder("torque", 0.5, max_torque=800.0)
     for u in (0.0, 3.0):
-        w = rudder_wrench(arcade, 0.25, u, 1025.0, COM)
+        w = rudder_wrench(arcade, 0.25, _ahead(u), STILL, 1025.0, COM)
         assert w.torque.tolist() == [0.0, 0.0, 400.0] and not w.force.any()
 
     hybrid = Rudder("hybrid", 0.5, max_torque=800.0, base_torque=200.0, max_speed=4.0)
-    assert rudder_wrench(hybrid, 0.5, 0.0, 1025.0, COM).torque[2] == pytest.approx(200.0)
-    assert rudder_wrench(hybrid, 0.5, 4.0, 1025.0, COM).torque[2] == pytest.approx(1000.0)
-    assert rudder_wrench(hybrid, -0.25, 2.0, 1025.0, COM).torque[2] == pytest.approx(-300.0)
-    assert not rudder_wrench(Rudder("none"), 0.5, 3.0, 1025.0, COM).torque.any()
+    assert rudder_wrench(hybrid, 0.5, _ahead(0.0), STILL, 1025.0, COM).torque[2] == (
+        pytest.approx(200.0))
+    assert rudder_wrench(hybrid, 0.5, _ahead(4.0), STILL, 1025.0, COM).torque[2] == (
+        pytest.approx(1000.0))
+    assert rudder_wrench(hybrid, -0.25, _ahead(2.0), STILL, 1025.0, COM).torque[2] == (
+        pytest.approx(-300.0))
+    assert not rudder_wrench(Rudder("none"), 0.5, _ahead(3.0), STILL, 1025.0, COM).torque.any()
+
+
+def test_the_lift_rudder_meets_the_flow_at_its_angle_of_attack():
+    """Fossen (2021), sec. 9.5: F_y = -1/2 rho C A V^2 sin(delta + beta_R), beta_R the drift."""
+    lift = Rudder("lift", math.radians(35), 0.25, 2.5, np.array([-2.0, 0, -0.5]))
+    u, v, delta = 2.0, 0.3, 0.2
+    beta = math.atan2(v, u)
+    w = rudder_wrench(lift, delta, _ahead(u, v), STILL, 1025.0, COM)
+    assert w.force[1] == pytest.approx(
+        -0.5 * 1025 * 2.5 * 0.25 * (u * u + v * v) * math.sin(delta + beta), rel=1e-12)
+    # amidships, a boat drifting to port (v > 0) is pushed back at the stern: the bow turns
+    # to port, into its path (weathervane stability, N_v > 0)
+    drift = rudder_wrench(lift, 0.0, _ahead(u, v), STILL, 1025.0, COM)
+    assert drift.force[1] < 0 and drift.torque[2] > 0
+    # amidships, yawing to port (r > 0) sweeps the stern to starboard: the rudder resists (N_r)
+    yawing = rudder_wrench(lift, 0.0, _ahead(u), np.array([0.0, 0.0, 0.2]), 1025.0, COM)
+    assert yawing.torque[2] < 0
+    assert yawing.force[1] == pytest.approx(
+        -0.5 * 1025 * 2.5 * 0.25 * math.hypot(u, -0.4) * -0.4, rel=1e-12)
+    # a skeg adds the same lift at the flow's angle alone
+    skeg = replace(lift, skeg_area=0.5)
+    with_skeg = rudder_wrench(skeg, 0.0, _ahead(u, v), STILL, 1025.0, COM)
+    assert with_skeg.force[1] == pytest.approx(3.0 * drift.force[1], rel=1e-12)
+    assert rudder_wrench(skeg, delta, _ahead(u), STILL, 1025.0, COM).force[1] == pytest.approx(
+        rudder_wrench(lift, delta, _ahead(u), STILL, 1025.0, COM).force[1], rel=1e-12)
 
 
 def test_keel_reflection_turns_drift_into_headway_keeping_speed():
@@ -115,8 +150,9 @@ def test_notes_velocity_decay_is_v_over_1_plus_c_dt_per_step():
     from dataclasses import replace
 
 
-    sc = ready({"boats": [{"damping": {"linear": [0] * 6, "quadratic": [0] * 6,
-                                                "decay": [0.4, 0, 0, 0, 0, 0.8]}}]})
+    sc = ready({"boats": [{**SEED_MODEL, "rudder": {"model": "none"},  # no lift resisting
+                           "damping": {"linear": [0] * 6, "quadratic": [0] * 6,
+                                       "decay": [0.4, 0, 0, 0, 0, 0.8]}}]})
     params, rest = sc.boats[0].params, sc.boats[0].initial
     # separately: a yaw rate turns a body-frame surge velocity (w x v)
     gliding = replace(rest, velocity=np.array([2.0, 0.0, 0.0]))
@@ -141,7 +177,7 @@ def _twin(**extra):
     in flat water."""
     thrusters = [{"name": "left", "max_thrust": 100.0, "position": [-2.0, 0.6, -0.3]},
                  {"name": "right", "max_thrust": 100.0, "position": [-2.0, -0.6, -0.3]}]
-    boat = ready({"boats": [{"propulsion": thrusters, "rudder": {"model": "none"},
+    boat = ready({"boats": [{**SEED_MODEL, "propulsion": thrusters, "rudder": {"model": "none"},
                              "damping": {"linear": [2000, 4000, 0, 0, 0, 3000],
                                          "quadratic": [0] * 6}, **extra}]}).boats[0]
     return boat

@@ -5,7 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from ready_scenarios import ready
+from ready_scenarios import SEED_MODEL, ready
 
 from boat_dynamics.physics.boat import (
     BoatInputs,
@@ -217,7 +217,7 @@ def test_released_afloat_a_boat_does_not_drift_on_a_trochoidal_wave(phase):
     m/s here) and with quadratic surge drag alone (the derived damping) still drifts at
     0.27-0.29 m/s 10-40 s later: the control below.
     """
-    sc = ready({"ocean": _wave(phase), "boats": [{}]})
+    sc = ready({"ocean": _wave(phase), "boats": [SEED_MODEL]})
     assert sc.boats[0].params.damping_linear[0] == 0.0  # derived: nothing linear holds surge
     start = sc.boats[0].initial
     afloat_drift = _drift(sc, start)

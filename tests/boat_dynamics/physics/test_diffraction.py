@@ -86,7 +86,7 @@ def test_mirrored_directions_mirror_sway_roll_and_yaw():
 
 
 def test_a_boat_without_coefficients_feels_no_diffraction():
-    sc = init_scenario(parse_scenario({"boats": [{}]}))
+    sc = init_scenario(parse_scenario({"boats": [{"hydrodynamics": {"coefficients": "none"}}]}))
     sea = WaveField((WaveComponent(0.3, 10.0, 0.0, 0.5, 0.0),))
     f = evaluate_forces(sc.boats[0].params, sc.boats[0].initial, BoatInputs(), sea)
     assert not f.diffraction.force.any() and not f.diffraction.torque.any()

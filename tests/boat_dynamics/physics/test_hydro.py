@@ -123,8 +123,12 @@ def _coupled_mode(dofs: list[int], guess: float, path=BOX) -> tuple[float, float
 
 def _free_decay(radiation: str, dof: str, pose: dict) -> tuple[float, float, int]:
     """(mean period s, damping ratio, upward crossings) of the box's free decay, flat water."""
+    # potential flow alone: no viscous share (cummins); resonance replaces it by its own
+    damping = {"quadratic": [0] * 6}
+    if radiation == "cummins":
+        damping["critical_ratio"] = [0] * 3
     boat = _box(hydrodynamics={"coefficients": str(BOX), "radiation": radiation},
-                damping={"quadratic": [0] * 6}, initial_pose=pose)
+                damping=damping, initial_pose=pose)
     return _decay(boat.params, boat.initial, dof)
 
 
@@ -217,7 +221,8 @@ def _wigley(pose: dict):
         "hull": {"type": "mesh", "path": str(DATA / "wigley_4x1x1.stl")}, "mass": m,
         "center_of_mass": ref.center_of_mass.tolist(),
         "inertia": np.diag(ref.inertia_matrix)[3:].tolist(), "inertia_products": [0, 0, 0],
-        "hydrodynamics": {"coefficients": str(WIGLEY)}, "damping": {"quadratic": [0] * 6},
+        "hydrodynamics": {"coefficients": str(WIGLEY)},
+        "damping": {"quadratic": [0] * 6, "critical_ratio": [0] * 3},  # potential flow alone
         "initial_pose": pose}]})).boats[0]
     assert boat.params.control.height_offset == pytest.approx(-0.1, abs=1e-6)  # its waterline
     return boat

@@ -237,7 +237,8 @@ def test_linear_pressure_is_hydrostatic_against_the_calm_plane_and_needs_coeffic
     lin = init_scenario(parse_scenario({"boats": [{
         "center_of_mass": [0, 0, -0.2], "buoyancy": {"pressure": "linear"},
         "hydrodynamics": {"coefficients": box}}]})).boats[0].params
-    hyd = init_scenario(parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2]}]})
+    hyd = init_scenario(parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
+                                                   "buoyancy": {"pressure": "hydrostatic"}}]})
                         ).boats[0].params
     sea = WaveField((WaveComponent(0.3, 12.0, 0.5, 0.0, 0.0),))
     for pose in ([0.1, 0.2, -0.05], [3.0, -1.0, 0.12]):
@@ -250,5 +251,6 @@ def test_linear_pressure_is_hydrostatic_against_the_calm_plane_and_needs_coeffic
         assert np.abs(waves.buoyancy.force - still.force).max() > 100.0  # the waves' FK
         assert np.abs(waves.diffraction.force).max() > 10.0
     with pytest.raises(ScenarioError, match=r"buoyancy\.pressure: 'linear'.*coefficients"):
-        parse_scenario({"boats": [{"buoyancy": {"pressure": "linear"}}]})
+        parse_scenario({"boats": [{"buoyancy": {"pressure": "linear"},
+                                   "hydrodynamics": {"coefficients": "none"}}]})
     assert _math.isfinite(lin.control.height_offset)

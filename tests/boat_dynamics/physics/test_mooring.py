@@ -18,7 +18,8 @@ NO_DAMPING = {"linear": [0.0] * 6, "quadratic": [0.0] * 6}
 
 
 def _moored_box(period: float):
-    params = parse_scenario({"boats": [{"damping": NO_DAMPING}]}).boats[0].params
+    params = parse_scenario({"boats": [{"damping": NO_DAMPING, "buoyancy": {
+        "pressure": "hydrostatic"}, "hydrodynamics": {"coefficients": "none"}}]}).boats[0].params
     mass = np.array([params.mass, params.mass, params.inertia[2]])
     return replace(params, mooring=soft_mooring(np.zeros(3), mass, period))
 

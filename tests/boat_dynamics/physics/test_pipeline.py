@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from ready_scenarios import ready
+from ready_scenarios import SEED_MODEL, ready
 
 from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.boat import BoatInputs, step
@@ -39,6 +39,7 @@ BOATS = [
     {"control_mode": "blend"},
     {"inertia": [3000, 9000, 10000], "inertia_products": [0, 800, 0]},
     {"buoyancy": {"pressure": "froude_krylov", "max_triangles": 200}},
+    {"buoyancy": {"pressure": "hydrostatic"}, "hydrodynamics": {"coefficients": "none"}},
 ]
 
 
@@ -60,10 +61,10 @@ def test_a_mixed_fleet_stepped_together_equals_each_boat_alone():
     params = [b.params for b in sc.boats]
     inputs = commands(len(params))
     fleet = System.build(params)
-    # boats 0, 1 and 7-10 share a code path (control modes apply after the step); 2-6 and 11
-    # (Froude-Krylov pressure) do not
-    assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9, 10], [2], [3],
-                                                               [4], [5], [6], [11]]
+    # boats 0, 1 and 7-11 share a code path (control modes apply after the step; 11 has fewer
+    # triangles); 2-6 and 12 (the seed notes' hydrostatic pressure) do not
+    assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9, 10, 11], [2],
+                                                               [3], [4], [5], [6], [12]]
     state = FleetState.stack([b.initial for b in sc.boats])
     alone = [b.initial for b in sc.boats]
     for _ in range(200):
@@ -214,8 +215,8 @@ def test_init_derives_each_boat_once_and_sets_it_afloat():
     from boat_dynamics.physics.scenario import parse_scenario
     from boat_dynamics.physics.tuning import critical_damping, default_drag, equilibrium_height
 
-    sc = parse_scenario({"boats": [{"name": "a"}, {"name": "b", "damping": {"linear": [0] * 6},
-                                                   "mass": 2000.0}]})
+    sc = parse_scenario({"boats": [{"name": "a", **SEED_MODEL},
+                                   {"name": "b", "damping": {"linear": [0] * 6}, "mass": 2000.0}]})
     raw = [b.params for b in sc.boats]
     assert all(p.derive is not None for p in raw)  # the reader leaves it to init
     assert all(np.array_equal(b.initial.velocity, np.zeros(3)) for b in sc.boats)
@@ -229,6 +230,10 @@ def test_init_derives_each_boat_once_and_sets_it_afloat():
     assert np.array_equal(a.damping_quadratic, default_drag(raw[0], z_a))
     assert np.array_equal(b.damping_linear, np.zeros(6))  # linear given: no ratio added
     assert b.damping_quadratic[2] > 0.0  # quadratic not given: derived
+    # b takes the default: its coefficient file (auto), A_inf and the fitted memory; the
+    # radiation damps heave and pitch
+    assert b.added_mass_matrix is not None and b.radiation_memory is not None
+    assert a.added_mass_matrix is None and a.radiation_memory is None
     assert np.array_equal(state.velocity,
                           pipeline.afloat(system, FleetState.stack([x.initial for x in sc.boats]),
                                           SEA).velocity)
@@ -256,7 +261,7 @@ def test_init_panels_froude_krylov_hulls_for_the_shortest_wave_acting_on_them():
         {"name": "coarse", "buoyancy": {"pressure": "froude_krylov", "panels_per_wavelength": 2}},
         {"name": "capped", "buoyancy": {"pressure": "froude_krylov", "max_triangles": 100}},
         {"name": "filtered", "buoyancy": {"pressure": "froude_krylov"}, "min_wavelength": 5.0},
-        {"name": "hydrostatic"}]})
+        {"name": "hydrostatic", "buoyancy": {"pressure": "hydrostatic"}}]})
     system, _ = pipeline.init(System.build([b.params for b in sc.boats]),
                               FleetState.stack([b.initial for b in sc.boats]), SEA)
     meshes = [p.buoyancy.mesh for p in system.params]

@@ -40,6 +40,7 @@ def _response(omega: float, a: float = 0.02, direction: float = math.pi,
     """Heave (m/m), roll and pitch (rad/m) amplitudes of the centre of mass."""
     sc = parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
                                     "buoyancy": {"pressure": "froude_krylov"},
+                                    "damping": {"critical_ratio": [0, 0, 0]},
                                     "hydrodynamics": {"coefficients": str(BOX),
                                                       "radiation": radiation}}]})
     r = regular_wave_response(sc.boats[0].params, 2 * math.pi * 9.81 / omega**2, direction, a)
@@ -110,7 +111,8 @@ def test_potential_flow_rao_mirrors_a_symmetric_hull():
 def _linear_box():
     return parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
                                       "buoyancy": {"pressure": "linear"},
-                                      "damping": {"water_velocity": "hull"},
+                                      "damping": {"water_velocity": "hull",
+                                                  "critical_ratio": [0, 0, 0]},
                                       "hydrodynamics": {"coefficients": str(BOX)}}]}
                           ).boats[0].params
 

@@ -5,7 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from ready_scenarios import ready
+from ready_scenarios import SEED_MODEL, ready
 
 from boat_dynamics.physics.boat import BoatInputs, initial_state, reference_pose, step
 from boat_dynamics.physics.tuning import critical_damping, equilibrium_height, hydrostatic_stiffness
@@ -79,22 +79,36 @@ def test_energy_without_damping_is_bounded_over_100_s(boat_factory):
     {"amplitude": 0.4, "wavelength": 20.0, "steepness": 0.8},
     {"amplitude": 0.2, "wavelength": 9.0, "direction_deg": 40, "steepness": 0.6}]}])
 def test_no_shooting_out_with_defaults(sea):
-    """A hull released 5 m deep breaks the surface without flying clear of it."""
+    """A hull released 5 m deep breaks the surface without flying clear of it.
+
+    The default model (Froude-Krylov pressure, the hull's coefficients): a half-density box
+    rising at about 3 m/s against its heave drag may break out a little, as a real one does;
+    the numerical shooting out of the seed notes (and a constant added mass carried out of the
+    water: its bottom 0.38 and 0.92 m above the surface, 2026-12) throws it clear. The
+    clearance is the lowest vertex's height above the surface there (zero while any part is
+    wet). Measured 2026-12: never clear in calm water, 0.074 m for an instant in the steep
+    sea; bound a tenth of its height.
+    """
+    from boat_dynamics.physics.contact import contact
+    from boat_dynamics.physics.system import FleetState, System
+
     sc = ready({"ocean": sea, "boats": [{}]})
     boat = sc.boats[0]
     params = boat.params
     state = initial_state(params, [0.0, 0.0, -5.0])
     dt = 1.0 / sc.simulation.rate_hz
     from ocean_sim.physics.waves import surface_height
-    top_above, bottom_above = -math.inf, -math.inf
+    top_above, clearance = -math.inf, 0.0
+    system = System.build([params])
     for _ in range(round(15.0 / dt)):
         state = step(params, state, BoatInputs(), sc.sea, dt)
+        depths = contact(system, FleetState.stack([state]), sc.sea).groups[0].depths
+        clearance = max(clearance, -float(depths.max()))
         ref = reference_pose(params, state)[0]
         h = surface_height(sc.sea, ref[None, :2], state.t)[0]
         top_above = max(top_above, ref[2] + 0.5 - h)
-        bottom_above = max(bottom_above, ref[2] - 0.5 - h)
     assert top_above > 0.2  # it broke the surface
-    assert bottom_above < 0.0  # its bottom never left the water
+    assert clearance < 0.1, clearance  # it never flew more than 0.1 m clear of the water
 
 
 def test_substeps_divide_the_step():
@@ -107,8 +121,13 @@ def test_substeps_divide_the_step():
 
 def test_default_damping_is_derived_and_explicit_values_are_kept():
     default = ready({}).boats[0].params
-    b_crit = 2 * math.sqrt(1025 * 9.81 * 8.0 * default.mass)
-    assert default.damping_linear[2] == pytest.approx(0.2 * b_crit, rel=1e-6)
+    # with its coefficients (auto), 10 % of critical with the added mass A_33 (inf)
+    heave_mass = default.mass + default.added_mass_matrix[2, 2]
+    b_crit = 2 * math.sqrt(1025 * 9.81 * 8.0 * heave_mass)
+    assert default.damping_linear[2] == pytest.approx(0.1 * b_crit, rel=1e-6)
+    seed_model = ready({"boats": [SEED_MODEL]}).boats[0].params
+    b_crit = 2 * math.sqrt(1025 * 9.81 * 8.0 * seed_model.mass)
+    assert seed_model.damping_linear[2] == pytest.approx(0.2 * b_crit, rel=1e-6)
     assert default.damping_quadratic[2] == pytest.approx(0.5 * 1025 * 1.0 * 8.0)
     assert default.damping_quadratic[1] == pytest.approx(0.5 * 1025 * 1.0 * 4.0 * 0.5, rel=1e-6)
     explicit = ready({"boats": [{"damping": {"linear": [1, 2, 3, 4, 5, 6],

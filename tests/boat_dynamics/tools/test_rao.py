@@ -21,7 +21,8 @@ def _rows(out: str) -> list[list[str]]:
 
 def test_the_default_scenario_runs_and_draws_a_png(tmp_path, capsys):
     # The default scenario's boat has its shipped coefficient file: potential flow is printed
-    # beside; in a 3 L and a 10 L head sea its heave follows it within 3 %.
+    # beside; in a 3 L and a 10 L head sea its heave (Froude-Krylov pressure on the wetted
+    # hull, nonlinear) follows it within 5 % (measured 2026-12: 3.5 % at 10 L).
     out_png = tmp_path / "raos.png"
     assert main(["rao", "--wavelengths", "3", "10", "--directions-deg", "180",
                  "-o", str(out_png)]) == 0
@@ -29,12 +30,13 @@ def test_the_default_scenario_runs_and_draws_a_png(tmp_path, capsys):
     assert len(rows) == 2
     assert out_png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     for row in rows:
-        assert float(row[4]) == pytest.approx(float(row[5]), rel=0.03)
+        assert float(row[4]) == pytest.approx(float(row[5]), rel=0.05)
 
 
 def test_a_boat_without_coefficients_says_so(tmp_path, capsys):
     scenario = tmp_path / "plain.yaml"
-    scenario.write_text("boats: [{}]\n")
+    scenario.write_text("boats: [{buoyancy: {pressure: hydrostatic}, "
+                        "hydrodynamics: {coefficients: none}}]\n")
     assert main(["rao", str(scenario), "--wavelengths", "10", "--directions-deg", "180",
                  "-o", str(tmp_path / "r.png")]) == 0
     out = capsys.readouterr().out
@@ -75,7 +77,7 @@ def test_a_bad_request_is_refused_naming_the_option(tmp_path, capsys, args, mess
 
 def test_a_bad_scenario_is_refused_naming_the_key(tmp_path, capsys):
     scenario = tmp_path / "bad.yaml"
-    scenario.write_text("boats:\n  - {hydrodynamics: {radiation: cummins}}\n")
+    scenario.write_text("boats:\n  - {hydrodynamics: {coefficients: none, radiation: cummins}}\n")
     assert main(["rao", str(scenario)]) == 2
     assert "hydrodynamics.radiation" in capsys.readouterr().err
 
@@ -88,6 +90,7 @@ def test_the_potential_flow_curve_peaks_at_the_coupled_roll_resonance():
     from boat_dynamics.tools.rao import theory_curve
 
     params = parse_scenario({"boats": [{"center_of_mass": [0, 0, -0.2],
+                                        "damping": {"critical_ratio": [0, 0, 0]},
                                         "hydrodynamics": {"coefficients": str(BOX)}}]}
                             ).boats[0].params
     curve = theory_curve(params, 9.81, math.inf)
@@ -95,4 +98,5 @@ def test_the_potential_flow_curve_peaks_at_the_coupled_roll_resonance():
     roll = curve(wavelengths, math.pi / 2)[:, 1]
     omega = math.sqrt(2 * math.pi * 9.81 / wavelengths[np.argmax(roll)])
     assert omega == pytest.approx(3.067, rel=0.01)
-    assert theory_curve(parse_scenario({}).boats[0].params, 9.81, math.inf) is None
+    plain = {"boats": [{"hydrodynamics": {"coefficients": "none"}}]}
+    assert theory_curve(parse_scenario(plain).boats[0].params, 9.81, math.inf) is None

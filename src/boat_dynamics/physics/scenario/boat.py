@@ -55,6 +55,13 @@ from boat_dynamics.physics.wind import DEFAULT_WIND_COEFFICIENTS, Windage
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
 DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 
+#: The same with potential-flow coefficients, whose radiation damps the waves a hull makes: the
+#: viscous share potential flow lacks, flow separation at the bilges and skin friction, about
+#: 10 % of critical in roll for a hull with sharp bilges and no bilge keels (Ikeda, Himeno &
+#: Tanaka 1978; Journee & Massie 2001, "Offshore Hydromechanics", sec. 8.3), and taken alike in
+#: heave and pitch, where a sharp-cornered hull sheds vortices too.
+RADIATING_CRITICAL_RATIO = (0.1, 0.1, 0.1)
+
 
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
@@ -141,8 +148,11 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
     coefficients, model, missing = _hydrodynamics(d.get("hydrodynamics"),
                                                   f"{key}.hydrodynamics", base_dir, params,
                                                   depth, loaded)
-    if model is not None and "critical_ratio" not in dd:
-        ratio = None  # the radiation damping replaces the default critical ratio
+    if model == "resonance" and "critical_ratio" not in dd:
+        ratio = None  # the radiation damping at resonance replaces the default ratio
+    elif model is not None and "critical_ratio" not in dd:
+        # the radiation damps the waves made; the viscous share potential flow lacks stays
+        ratio = None if "linear" in dd else np.array(RADIATING_CRITICAL_RATIO)
     radiation = model == "resonance" and "linear" not in dd and "critical_ratio" not in dd
     if (isinstance(params.buoyancy, MeshBuoyancy) and params.buoyancy.pressure == "linear"
             and model is None):
@@ -314,7 +324,8 @@ def _damping(dd: Mapping[str, Any], dk: str
                        "at its equilibrium draft")
     describe(f"{dk}.critical_ratio", None, "3 numbers >= 0: damping ratios in heave, roll, "
              "pitch added to linear", default_doc=f"{list(DEFAULT_CRITICAL_RATIO)} unless "
-             "linear is given (or potential-flow coefficients damp the boat)")
+             f"linear is given; {list(RADIATING_CRITICAL_RATIO)} with potential-flow "
+             "coefficients (the viscous share: their radiation damps the waves made)")
     ratio_default = None if "linear" in dd else list(DEFAULT_CRITICAL_RATIO)
     ratio_raw = dd.get("critical_ratio", ratio_default)
     ratio = (None if ratio_raw is None
@@ -341,20 +352,22 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
     """
     d = mapping(raw, key)
     only(d, key, ("coefficients", "radiation"))
+    mesh = isinstance(params.buoyancy, MeshBuoyancy)
     describe(f"{key}.coefficients", None, "a .npz coefficient file (boatsim hydro; relative: "
-             "to the scenario's folder), or auto: the shipped or hydro/ file of this hull",
-             default_doc="none: no potential-flow coefficients")
-    if "coefficients" not in d:
+             "to the scenario's folder), auto: the shipped or hydro/ file of this hull (or the "
+             "estimate), or none", default_doc="auto for a mesh buoyancy model, none for "
+             "sample points")
+    path = d.get("coefficients", "auto" if mesh else "none")
+    if path == "none":
         if "radiation" in d:
             raise ScenarioError(f"{key}.radiation", d["radiation"],
-                                "needs hydrodynamics.coefficients (a coefficient file)")
+                                "needs hydrodynamics.coefficients (a coefficient file, or auto)")
         return None, None, None
     model = choice(d, "radiation", key, "cummins", RADIATION_MODELS)
-    path = d["coefficients"]
     if not isinstance(path, str) or not path:
         raise ScenarioError(f"{key}.coefficients", path,
                             "must be the path of a .npz coefficient file (boatsim hydro), "
-                            "or auto")
+                            "auto or none")
     if path == "auto":
         hull_key = coefficients_key(params, depth)
         found = find_coefficients(hull_key, coefficient_directories(base_dir))

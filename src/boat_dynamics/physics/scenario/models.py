@@ -15,7 +15,7 @@ from boat_dynamics.physics.hull import BoxHull, HullMesh
 from boat_dynamics.physics.hull_drag import HullDrag
 from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
 from boat_dynamics.physics.propulsion import MAX_THRUSTERS, Propulsion
-from boat_dynamics.physics.rudder import RUDDER_MODELS, Rudder
+from boat_dynamics.physics.rudder import DEFAULT_LIFT_COEFFICIENT, RUDDER_MODELS, Rudder
 from boat_dynamics.physics.scenario.read import (
     choice,
     describe,
@@ -54,7 +54,7 @@ _MESH_ONLY = ("pressure", "panels_per_wavelength", "max_triangles", "slamming")
 
 def _mesh_buoyancy(bd: Mapping[str, Any], bk: str, mesh: HullMesh) -> MeshBuoyancy:
     """The mesh model: its ``drag``, ``pressure`` model and, for ``froude_krylov``, panel size."""
-    pressure = choice(bd, "pressure", bk, "hydrostatic", PRESSURE_MODELS)
+    pressure = choice(bd, "pressure", bk, "froude_krylov", PRESSURE_MODELS)
     for extra in ("panels_per_wavelength", "max_triangles"):
         if extra in bd and pressure != "froude_krylov":
             raise ScenarioError(f"{bk}.{extra}", bd[extra], "only for pressure froude_krylov")
@@ -151,8 +151,10 @@ _RUDDER_NEEDS = {"lift": (), "torque": ("max_torque",),
 def rudder_block(rd: Mapping[str, Any], rk: str, hull: BoxHull) -> Rudder:
     """``rudder``: its model and the keys that model reads (default at the transom's bottom)."""
     only(rd, rk, ("model", "max_angle_deg", "area", "lift_coefficient", "position",
-                   "max_torque", "base_torque", "max_speed"))
+                   "max_torque", "base_torque", "max_speed", "skeg_area"))
     rudder_model = choice(rd, "model", rk, "lift", RUDDER_MODELS)
+    if "skeg_area" in rd and rudder_model != "lift":
+        raise ScenarioError(f"{rk}.skeg_area", rd["skeg_area"], "only for rudder model lift")
     for k in _RUDDER_NEEDS[rudder_model]:
         if k not in rd:
             raise ScenarioError(f"{rk}.{k}", None, f"is required by the {rudder_model} model")
@@ -161,13 +163,15 @@ def rudder_block(rd: Mapping[str, Any], rk: str, hull: BoxHull) -> Rudder:
         max_angle=math.radians(number(rd, "max_angle_deg", rk, 35.0, 0.0, 90.0, low_open=True,
                                        unit="deg")),
         area=number(rd, "area", rk, 0.25, 0.0, 1e4, low_open=True, unit="m^2"),
-        lift_coefficient=number(rd, "lift_coefficient", rk, 1.0, 0.0, 10.0, low_open=True),
+        lift_coefficient=number(rd, "lift_coefficient", rk, DEFAULT_LIFT_COEFFICIENT, 0.0, 10.0,
+                                low_open=True, unit="1/rad"),
         position=vector(rd, "position", rk, 3, [-hull.length / 2, 0.0, -hull.height / 2],
                         default_doc="[-length/2, 0, -height/2]: the transom's bottom",
                         unit="m, body frame"),
         max_torque=number(rd, "max_torque", rk, 0.0, 0.0, 1e9, unit="N m"),
         base_torque=number(rd, "base_torque", rk, 0.0, 0.0, 1e9, unit="N m"),
         max_speed=number(rd, "max_speed", rk, 1.0, 0.0, 1e3, low_open=True, unit="m/s"),
+        skeg_area=number(rd, "skeg_area", rk, 0.0, 0.0, 1e4, unit="m^2"),
     )
 
 
