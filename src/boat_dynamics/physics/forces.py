@@ -3,8 +3,9 @@
 Each force model is a function in its own module returning force and torque (buoyancy:
 :mod:`.mesh_buoyancy` and :mod:`.buoyancy`; :mod:`.hull_drag`, :mod:`.damping`,
 :mod:`.propulsion`, :mod:`.rudder`, :mod:`.added_mass`); this module only evaluates them
-group by group, from the surface contact of the state, and adds them up. :func:`boat_dynamics.physics.pipeline.step`
-integrates the total; :mod:`.tuning` reads the buoyancy of trial poses from here.
+group by group, from the surface contact of the state, and adds them up.
+:func:`boat_dynamics.physics.pipeline.step` integrates the total; :mod:`.tuning` reads the
+buoyancy of trial poses from here.
 """
 
 from __future__ import annotations
