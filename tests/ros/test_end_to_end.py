@@ -21,6 +21,7 @@ from nav_msgs.msg import Odometry
 from rcl_interfaces.srv import SetParameters
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float32, Float64
+from support import ROOT, cli_run
 
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_msgs_py import names
@@ -412,6 +413,24 @@ def test_several_boats_each_in_its_namespace(boatsim, probe):
     assert path["charlie"] > 8.0  # scripted: full thrust all along, > 1 m/s over 8 s
     assert sim.stop() == 0
     assert "boat charlie: scripted commands; ignoring command topics" in sim.output()
+
+
+def test_boats_whose_start_up_lines_differ_in_severity_start(tmp_path):
+    # a catamaran whose radiation memory fits poorly (a warning) beside boats with info lines
+    # only: rclpy refuses one call site whose severity changes (issue 32: `boatsim run` died
+    # at start-up with "Logger severity cannot be changed between calls")
+    otter = ROOT / "scenarios" / "otter.stl"
+    (tmp_path / "s.yaml").write_text(
+        "boats:\n"
+        "  - {name: a}\n"
+        f"  - {{name: cat, hull: {{type: mesh, path: {otter}}}, mass: 80.0,\n"
+        "     center_of_mass: [0.0, 0.0, 0.125], inertia: [14.9, 20.0, 20.0],\n"
+        "     hydrodynamics: {coefficients: auto}, initial_pose: {position: [5.0, 0.0, 0.122]}}\n"
+        "  - {name: b, commands: [{t: 0, thrust: 0.5, rudder: 0.0}]}\n")
+    out = cli_run("run", str(tmp_path / "s.yaml"), "--fast", "--duration", "0.5")
+    assert out.returncode == 0, out.stderr
+    assert "boat cat: its radiation memory fits the coefficients only within" in out.stderr
+    assert "boat b: scripted commands; ignoring command topics" in out.stderr
 
 
 def test_a_real_time_run_behind_the_wall_clock_still_takes_commands_and_calls(

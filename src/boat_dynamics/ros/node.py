@@ -171,6 +171,20 @@ def _boat_lines(spec: BoatSpec) -> list[tuple[str, str]]:
     return lines
 
 
+def _log_at(log, level: str, text: str) -> None:
+    """Log ``text`` at ``level`` (``info`` or ``warning``), one call site per severity.
+
+    rclpy refuses a call site whose severity changes between calls (ValueError: Logger
+    severity cannot be changed between calls), so a loop cannot call ``getattr(log, level)``.
+    """
+    if level == "warning":
+        log.warning(text)
+    elif level == "info":
+        log.info(text)
+    else:
+        raise ValueError(f"log level {level!r}: 'info' or 'warning'")
+
+
 class DynamicsNode(Node):
     """Steps the boats of a scenario and publishes their odometry and wrenches.
 
@@ -379,7 +393,7 @@ class DynamicsNode(Node):
                          f"at ({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
                          f"{names.boat_topic(spec.name, names.ODOM)}")
                 for level, line in lines:
-                    getattr(log, level)(f"boat {label}: {line}")
+                    _log_at(log, level, f"boat {label}: {line}")
             for level_line in (("info", f"mass {spec.params.mass:g} kg"), *lines):
                 groups.setdefault(level_line, []).append(label)
         if len(specs) <= _LOGGED_BOATS:
@@ -389,7 +403,7 @@ class DynamicsNode(Node):
         for (level, line), labels in groups.items():
             who = (f"{len(labels)} boats ({labels[0]} .. {labels[-1]})" if len(labels) > 1
                    else f"boat {labels[0]}")
-            getattr(log, level)(f"{who}: {line}")
+            _log_at(log, level, f"{who}: {line}")
 
     def _subscribe_thrusters(self, boat: _Boat) -> None:
         """Per named thruster: ``thrusters/<name>/thrust`` and, if steerable, ``.../angle``."""
