@@ -112,8 +112,8 @@ def orders_for(params: BoatParams, name: str, heading: float, throttle: float,
     return Order(name, heading, throttles, 0.0)
 
 
-def sea_trials(boat: BoatSpec, sea: WaveField, orders: Sequence[Order], duration: float,
-               dt: float, sample_every: int = 10) -> Track:
+def sea_trials(boat: BoatSpec | Sequence[BoatSpec], sea: WaveField, orders: Sequence[Order],
+               duration: float, dt: float, sample_every: int = 10) -> Track:
     """Drive copies of ``boat``, one per order, through ``sea`` for ``duration`` s.
 
     The copies start at the boat's initial position and attitude, afloat
@@ -122,7 +122,8 @@ def sea_trials(boat: BoatSpec, sea: WaveField, orders: Sequence[Order], duration
     (through the pipeline, as the dynamics node steps a fleet).
 
     Args:
-        boat: the boat as a scenario gives it.
+        boat: the boat as a scenario gives it, or one such boat per order (the same hull
+            started otherwise, e.g. heeled), stepped together as one fleet.
         sea: the sea.
         orders: what each copy does.
         duration: s of simulated time.
@@ -133,9 +134,12 @@ def sea_trials(boat: BoatSpec, sea: WaveField, orders: Sequence[Order], duration
         The track.
     """
     direction = main_direction(sea)
-    roll, pitch, _ = quat_to_euler(boat.initial.orientation)
-    copies = [replace(boat, initial=_placed(boat, roll, pitch, direction + o.heading))
-              for o in orders]
+    boats = [boat] * len(orders) if isinstance(boat, BoatSpec) else list(boat)
+    if len(boats) != len(orders):
+        raise ValueError(f"{len(boats)} boats for {len(orders)} orders: one, or one per order")
+    copies = [replace(b, initial=_placed(b, *quat_to_euler(b.initial.orientation)[:2],
+                                         direction + o.heading))
+              for b, o in zip(boats, orders, strict=True)]
     system, state = pipeline.start(copies, sea, 0.0)
     inputs = FleetInputs.stack([BoatInputs(throttle=o.throttle, rudder=o.rudder)
                                 for o in orders])

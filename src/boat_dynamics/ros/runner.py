@@ -45,7 +45,7 @@ from boat_dynamics.ros.node import (
     advertises_wrenches,
 )
 from boat_dynamics.ros.participants import PROFILE, Participants, use_profile
-from boat_dynamics.tools.recording import BagWriter, TopicRecorder
+from boat_dynamics.tools.recording import BagWriter, TopicRecorder, declares_only
 from boat_msgs_py import names
 from boat_msgs_py.qos import RECORD_QOS
 from boat_msgs_py.tap import Tap
@@ -436,7 +436,8 @@ class _Loop:
         self.recorder = TopicRecorder(self.recorder_node, self.bag, self.clock.stamp_ns,
                                       skip=tap.topics | _BARRIER_TOPICS,
                                       qos=RECORD_QOS,
-                                      skip_if=_tapped_by_shards if self.options.shards else None)
+                                      skip_if=_tapped_by_shards if self.options.shards else None,
+                                      drop={names.PARAMETER_EVENTS: declares_only})
         if self.conductor is None:
             self.recorder.discover()
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import importlib
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TextIO
 
@@ -24,7 +24,7 @@ from boat_msgs_py.qos import RECORD_QOS, latched
 from boat_msgs_py.tap import Tap
 from boat_msgs_py.typestore import TypesNotInstalled, typestore
 
-__all__ = ["BagWriter", "RecordError", "TopicRecorder", "record"]
+__all__ = ["BagWriter", "RecordError", "TopicRecorder", "declares_only", "record"]
 
 
 class RecordError(RuntimeError):
@@ -139,11 +139,15 @@ class TopicRecorder:
         skip_if: ``skip_if(node, topic)``: True = never subscribe to ``topic``, False =
             record it, None = not known yet, ask again at the next discovery (asked when the
             topic has a publisher).
+        drop: per topic, ``drop[topic](data)``: True = leave this serialized message out
+            (:func:`declares_only`: a simulation's bag leaves out the parameter declarations
+            of a node starting beside it).
     """
 
     def __init__(self, node: Node, bag: BagWriter, stamp_ns: Callable[[], int],
                  skip: set[str], qos: QoSProfile, only: set[str] | None = None,
-                 skip_if: Callable[[Node, str], bool | None] | None = None) -> None:
+                 skip_if: Callable[[Node, str], bool | None] | None = None,
+                 drop: Mapping[str, Callable[[bytes], bool]] | None = None) -> None:
         self._node = node
         self._bag = bag
         self._stamp_ns = stamp_ns
@@ -151,6 +155,7 @@ class TopicRecorder:
         self._qos = qos
         self._only = only
         self._skip_if = skip_if
+        self._drop = dict(drop or {})
         self._subs: dict[str, object] = {}
 
     def discover(self) -> None:
@@ -192,9 +197,28 @@ class TopicRecorder:
 
     def _writer_for(self, topic: str, msgtype: str, offered: QoSProfile
                     ) -> Callable[[bytes], None]:
+        drop = self._drop.get(topic)
+
         def on_message(data: bytes) -> None:
-            self._bag.write(topic, msgtype, data, self._stamp_ns(), offered)
+            if drop is None or not drop(data):
+                self._bag.write(topic, msgtype, data, self._stamp_ns(), offered)
         return on_message
+
+
+def declares_only(data: bytes) -> bool:
+    """Whether a serialized /parameter_events message only declares parameters.
+
+    A node declares its parameters (``use_sim_time`` at least) as it starts; a process that
+    starts beside the simulation (the surface server) does so at a wall-clock moment, so
+    whether the recorder has matched it yet, and the simulation time it is stamped with, differ
+    between two identical runs. A value set or deleted is kept.
+    """
+    from rcl_interfaces.msg import ParameterEvent
+    from rclpy.serialization import deserialize_message
+
+    event = deserialize_message(data, ParameterEvent)
+    return bool(event.new_parameters) and not (event.changed_parameters
+                                               or event.deleted_parameters)
 
 
 def record(topics: list[str], out: str, status: TextIO = sys.stderr,

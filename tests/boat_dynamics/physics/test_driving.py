@@ -118,13 +118,12 @@ def _calm(boat, sc) -> tuple[float, float, list[str]]:
         roll=math.radians(10.0), pitch=math.radians(5.0)), angular_velocity=np.array(
             [0.0, 0.0, 0.1])))
     orders = [orders_for(boat.params, "ahead", 0.0, 1.0, 0.0),
-              orders_for(boat.params, "turn", 0.0, 0.8, TURN)]
+              orders_for(boat.params, "turn", 0.0, 0.8, TURN), Order("settle", 0.0, 1.0, 0.0)]
     calm = WaveField(gravity=sc.sea.gravity, depth=sc.sea.depth)
-    dt = 1.0 / sc.simulation.rate_hz
-    track = sea_trials(boat, calm, orders, DURATION, dt)
-    settling = sea_trials(perturbed, calm, [Order("settle", 0.0, 1.0, 0.0)], DURATION, dt)
-    motion = np.concatenate([settling.angular_velocity[0], settling.velocity[0, :, 1:]], axis=1)
-    early, late = motion[settling.t <= 10.0], motion[settling.t >= DURATION - 20.0]
+    track = sea_trials([boat, boat, perturbed], calm, orders, DURATION,
+                       1.0 / sc.simulation.rate_hz)
+    motion = np.concatenate([track.angular_velocity[2], track.velocity[2, :, 1:]], axis=1)
+    early, late = motion[track.t <= 10.0], motion[track.t >= DURATION - 20.0]
     # oscillation about the settled state (a trimmed hull at speed keeps a steady body w)
     early_swing = np.abs(early - late.mean(axis=0)).max(axis=0)
     late_swing = np.abs(late - late.mean(axis=0)).max(axis=0)
