@@ -122,11 +122,18 @@ def start(boats: Sequence[BoatSpec], sea: WaveField, t: float = 0.0
           ) -> tuple[System, FleetState]:
     """:func:`init` of a scenario's boats at time ``t`` (s), from their initial poses.
 
+    Afloat (:func:`afloat`), each boat's own ``velocity`` (m/s, body frame: a towing-tank run
+    starting at speed) added to the waves' motion, its angular velocity kept.
+
     Raises:
         InitError: a boat's hull sinks (``boat`` is its place in ``boats``).
     """
-    return init(System.build([b.params for b in boats]),
-                FleetState.stack([replace(b.initial, t=t) for b in boats]), sea)
+    system, state = init(System.build([b.params for b in boats]),
+                         FleetState.stack([replace(b.initial, t=t) for b in boats]), sea)
+    own = np.array([b.velocity for b in boats], dtype=float).reshape(len(boats), 3)
+    if own.any():  # else untouched: + 0.0 would turn a -0.0 into 0.0
+        state = replace(state, velocity=state.velocity + own)
+    return system, state
 
 
 def init_scenario(scenario: Scenario, t: float = 0.0) -> Scenario:

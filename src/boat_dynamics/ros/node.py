@@ -389,7 +389,7 @@ class DynamicsNode(Node):
                 pos, q = reference_pose(spec.params, spec.initial)
                 vel = rotation_matrix(q) @ spec.initial.velocity
                 log.info(f"boat {label}: mass {spec.params.mass:g} kg, start at "
-                         f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving with the waves "
+                         f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving "
                          f"at ({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
                          f"{names.boat_topic(spec.name, names.ODOM)}")
                 for level, line in lines:

@@ -1,6 +1,7 @@
 """The pipeline: stepping boats together is stepping each alone (one implementation, batched);
 the surface contact is a value a step takes and returns, never a cache."""
 
+import math
 from dataclasses import FrozenInstanceError, replace
 
 import numpy as np
@@ -209,6 +210,36 @@ def test_afloat_is_exactly_zero_velocity_in_still_water_and_moves_with_waves():
     moving = pipeline.afloat(system, state, SEA)
     assert np.abs(moving.velocity).max() > 0.05
     assert moving.position is state.position  # only the velocity is set
+
+
+def test_a_boat_started_under_way_keeps_its_speed_from_the_first_step():
+    # initial_pose.velocity: the waves' motion plus the given body-frame velocity; in calm
+    # water at full thrust, a boat started at its own top speed holds it, one started at rest
+    # has a run-up; the angular velocity is the one asked for, in rad/s
+    from boat_dynamics.physics.scenario import parse_scenario
+
+    at_rest = parse_scenario({"boats": [{"name": "a", **SEED_MODEL}]})
+    moving = parse_scenario({"boats": [{"name": "a", **SEED_MODEL, "initial_pose": {
+        "velocity": [1.5, -0.2, 0.0], "angular_velocity_deg": [0.0, 0.0, 5.0]}}]})
+    assert np.array_equal(moving.boats[0].initial.angular_velocity,
+                          [0.0, 0.0, math.radians(5.0)])
+    _, rest = pipeline.start(at_rest.boats, SEA)
+    _, under_way = pipeline.start(moving.boats, SEA)
+    assert np.allclose(under_way.velocity - rest.velocity, [[1.5, -0.2, 0.0]], atol=1e-12)
+    _, calm = pipeline.start(moving.boats, WaveField())
+    assert np.array_equal(calm.velocity, [[1.5, -0.2, 0.0]])
+    # started again (a scenario already initialized, as the trials do): not added twice
+    again = pipeline.init_scenario(replace(moving, sea=WaveField()))
+    assert np.array_equal(pipeline.start(again.boats, WaveField())[1].velocity, calm.velocity)
+    top = parse_scenario({"boats": [{"name": "a", **SEED_MODEL,
+                                     "initial_pose": {"velocity": [2.0, 0, 0]}},
+                                    {"name": "b", **SEED_MODEL}]})
+    system, state = pipeline.start(top.boats, WaveField())
+    inputs = FleetInputs.stack([BoatInputs(throttle=1.0), BoatInputs(throttle=1.0)])
+    for _ in range(100):
+        state = pipeline.step(system, state, inputs, WaveField(), DT).state
+    u = state.velocity[:, 0]
+    assert u[0] > 1.5 and u[1] < 0.8 * u[0], u  # 1 s in: at speed against a run-up
 
 
 def test_init_derives_each_boat_once_and_sets_it_afloat():

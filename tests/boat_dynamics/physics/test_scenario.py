@@ -242,6 +242,19 @@ def test_a_start_beyond_a_local_frame_is_refused():
     assert parse_scenario({"boats": [{"initial_pose": {"position": [-9e6, 9e6, 0.0]}}]}).boats
 
 
+@pytest.mark.parametrize(("key", "value", "allowed"), [
+    ("velocity", [50.5, 0.0, 0.0], "within +-50"),
+    ("velocity", [1.0, float("nan"), 0.0], "finite"),
+    ("velocity", [1.0, 0.0], "list of 3 numbers"),
+    ("angular_velocity_deg", [0.0, 0.0, -361.0], "within +-360"),
+    ("angular_velocity_deg", "fast", "list of 3 numbers")])
+def test_an_initial_velocity_out_of_range_is_refused_with_its_key(key, value, allowed):
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"initial_pose": {key: value}}]})
+    assert err.value.key == f"boats[0].initial_pose.{key}"
+    assert allowed in err.value.allowed
+
+
 def test_a_hull_smaller_than_a_centimetre_is_refused():
     # found by the fuzzer: a length of 5e-324 m stopped numpy's eigenvalue solver
     with pytest.raises(ScenarioError) as err:

@@ -99,8 +99,12 @@ def boat_block(raw: Any, key: str, sim: SimulationSettings, lone: bool,
             alike[same] = params, thruster_names
     ik = f"{key}.initial_pose"
     idd = mapping(d.get("initial_pose"), ik)
-    only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg"))
+    only(idd, ik, ("position", "roll_deg", "pitch_deg", "yaw_deg", "velocity",
+                   "angular_velocity_deg"))
     return BoatSpec(name=name, params=params, initial=_initial(params, idd, ik),
+                    velocity=_bounded_vector(idd, "velocity", ik, MAX_SPEED,
+                                             "m/s, body frame (x forward, y to port, z up), "
+                                             "added to the waves' motion at the start"),
                     commands=_commands(d.get("commands"), f"{key}.commands",
                                        params.rudder.max_angle),
                     sensors=sensors_block(d.get("sensors"), f"{key}.sensors", sim.rate_hz),
@@ -403,13 +407,32 @@ def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
         raise ScenarioError(f"{ik}.position", idd.get("position"),
                             f"each coordinate must lie within +-{MAX_POSITION:g} m (the world "
                             "frame is local, around simulation.datum)")
-    return initial_state(
+    state = initial_state(
         params,
         position,
         roll=math.radians(number(idd, "roll_deg", ik, 0.0, -180.0, 180.0, unit="deg")),
         pitch=math.radians(number(idd, "pitch_deg", ik, 0.0, -90.0, 90.0, unit="deg")),
         yaw=math.radians(number(idd, "yaw_deg", ik, 0.0, -360.0, 360.0, unit="deg")),
     )
+    rate = _bounded_vector(idd, "angular_velocity_deg", ik, MAX_RATE_DEG,
+                           "deg/s, body frame (roll, pitch, yaw rate)")
+    return replace(state, angular_velocity=np.radians(rate)) if rate.any() else state
+
+
+#: Largest initial speed along a body axis, m/s (``initial_pose.velocity``).
+MAX_SPEED = 50.0
+#: Largest initial rate about a body axis, deg/s (``initial_pose.angular_velocity_deg``).
+MAX_RATE_DEG = 360.0
+
+
+def _bounded_vector(d: Mapping[str, Any], name: str, key: str, bound: float,
+                    unit: str) -> np.ndarray:
+    """``d[name]``: 3 finite numbers within +-``bound``, default zeros, or ScenarioError."""
+    v = vector(d, name, key, 3, [0.0, 0.0, 0.0], unit=f"{unit}, each within +-{bound:g}")
+    if np.any(np.abs(v) > bound):
+        raise ScenarioError(f"{key}.{name}", d.get(name), f"each entry must lie within "
+                                                          f"+-{bound:g}")
+    return v
 
 
 def _commands(raw: Any, key: str, max_rudder: float) -> CommandScript | None:

@@ -6,6 +6,8 @@ import reprlib
 from dataclasses import dataclass, field
 from typing import Literal, get_args
 
+import numpy as np
+
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.model import BoatParams, BoatState
 from boat_dynamics.physics.sensors import Datum, SensorSpec
@@ -115,6 +117,9 @@ class BoatSpec:
         sensors: its sensors (IMU, GNSS), in the file's order.
         thrusters: the names of its thrusters (``propulsion`` as a list), in
             ``params.thrusters``' order; empty for a single ``propulsion`` mapping.
+        velocity: (3,) m/s, body frame: the speed it starts with through the water, added
+            to the waves' motion at the hull (``initial_pose.velocity``; its angular
+            velocity is in ``initial``).
     """
 
     name: str
@@ -123,6 +128,7 @@ class BoatSpec:
     commands: CommandScript | None
     sensors: tuple[SensorSpec, ...] = ()
     thrusters: tuple[str, ...] = ()
+    velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
 
 @dataclass(frozen=True)
