@@ -82,6 +82,8 @@ class Derivation:
             auto``) and has none: ``hydro`` becomes :func:`.hydro.estimate` at its equilibrium.
         windage: the boat's windage with NaN where it is to be derived from the hull above
             its equilibrium waterline (:func:`.wind.windage_of_hull`), or None: none.
+        mooring_period: s, the natural period of a soft mooring (:func:`.mooring.soft_mooring`,
+            with the derived added mass) holding the boat where it starts, or None: free.
     """
 
     critical_ratio: np.ndarray | None = None
@@ -91,6 +93,7 @@ class Derivation:
     memory: bool = False
     estimate: str | None = None
     windage: Windage | None = None
+    mooring_period: float | None = None
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,12 @@ from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.modes import apply_modes, pd_torques
 from boat_dynamics.physics.propulsion import lagged_throttle
 from boat_dynamics.physics.radiation import advance
-from boat_dynamics.physics.rigid_body import integrate, integrate_coupled, rotation_matrix
+from boat_dynamics.physics.rigid_body import (
+    integrate,
+    integrate_coupled,
+    quat_to_euler,
+    rotation_matrix,
+)
 from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.tuning import derive
 from ocean_sim.physics.environment import Environment
@@ -100,9 +105,22 @@ def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, Fle
             except ValueError as exc:
                 raise InitError(i, "mass", p.mass, str(exc)) from exc
         params.append(derived[id(p)])
+    params = [_anchored(p, state, i) for i, p in enumerate(params)]
     if any(a is not b for a, b in zip(params, system.params, strict=True)):
         system = System.build(params)
     return system, afloat(system, state, sea)
+
+
+def _anchored(params: BoatParams, state: FleetState, i: int) -> BoatParams:
+    """``params`` with a mooring still to anchor (``mooring`` key) held where boat i starts.
+
+    The anchor: the world x, y (m) of its centre of mass and its heading (rad) in ``state``.
+    """
+    if params.mooring is None or not np.isnan(params.mooring.anchor).any():
+        return params
+    heading = quat_to_euler(state.orientation[i])[2]
+    anchor = np.array([state.position[i, 0], state.position[i, 1], heading])
+    return replace(params, mooring=replace(params.mooring, anchor=anchor))
 
 
 def _panelled(params: BoatParams, sea: WaveField) -> BoatParams:

@@ -29,6 +29,7 @@ from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.mooring import soft_mooring
 from boat_dynamics.physics.rigid_body import mass_matrix, quat_to_euler
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
+from boat_dynamics.physics.tuning import horizontal_mass
 from ocean_sim.physics.waves import WaveComponent, WaveField, angular_frequency
 
 __all__ = ["MOORING_PERIODS", "Response", "potential_flow_rao", "regular_wave_response",
@@ -95,8 +96,10 @@ def regular_wave_response(params: BoatParams, wavelength: float, direction: floa
     omega = float(angular_frequency(wave.wavenumber, gravity, depth))
     inputs, period = FleetInputs.stack([BoatInputs()]), 2 * math.pi / omega
     start = initial_state(params, np.zeros(3))
+    if params.derive is not None:  # this mooring, not the scenario's (``mooring`` key)
+        params = replace(params, derive=replace(params.derive, mooring_period=None))
     params = replace(params, mooring=soft_mooring(
-        np.array([start.position[0], start.position[1], 0.0]), _horizontal_mass(params),
+        np.array([start.position[0], start.position[1], 0.0]), horizontal_mass(params),
         max(MOORING_PERIODS * period, 30.0)))
     system, state = pipeline.init(System.build([params]), FleetState.stack([start]), sea)
     floor = 0.02 * np.array([1.0, wave.wavenumber, wave.wavenumber])
@@ -112,13 +115,6 @@ def regular_wave_response(params: BoatParams, wavelength: float, direction: floa
         if done or state.t + window * dt > max_time:
             return Response(wavelength, direction, omega, *map(float, history[-1]))
 
-
-def _horizontal_mass(params: BoatParams) -> np.ndarray:
-    """(3,) surge, sway mass and yaw inertia with their (infinite-frequency) added mass."""
-    rigid = np.array([params.mass, params.mass, params.inertia[2]], dtype=float)
-    if params.hydro is not None:
-        return rigid + np.diag(params.hydro.added_mass_inf)[[0, 1, 5]]
-    return rigid + np.asarray(params.added_mass, dtype=float)[[0, 1, 5]]
 
 
 def _run(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField, dt: float,

@@ -19,6 +19,7 @@ from boat_dynamics.physics.hull import box_mesh
 from boat_dynamics.physics.hydro import HydroCoefficients, estimate
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
+from boat_dynamics.physics.mooring import soft_mooring
 from boat_dynamics.physics.radiation import fit_memory
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
@@ -31,6 +32,7 @@ __all__ = [
     "default_drag",
     "derive",
     "equilibrium_height",
+    "horizontal_mass",
     "hydrostatic_stiffness",
     "potential_flow_at_resonance",
 ]
@@ -197,8 +199,23 @@ def derive(params: BoatParams) -> BoatParams:
         quadratic = default_drag(params, z_eq)
     if wanted.windage is not None:
         params = replace(params, windage=_windage(params, wanted.windage, z_eq))
+    if wanted.mooring_period is not None:  # anchored where it starts: pipeline.init
+        params = replace(params, mooring=soft_mooring(np.full(3, np.nan), horizontal_mass(params),
+                                                      wanted.mooring_period))
     return replace(params, damping_linear=linear, damping_quadratic=quadratic,
                    control=replace(params.control, height_offset=z_eq), derive=None)
+
+
+def horizontal_mass(params: BoatParams) -> np.ndarray:
+    """(3,) kg, kg, kg m^2: surge, sway mass and yaw inertia with their added mass.
+
+    The infinite-frequency added mass of the coefficients where the boat has them, else its
+    ``added_mass``: what a soft mooring's period is set with (:func:`.mooring.soft_mooring`).
+    """
+    rigid = np.array([params.mass, params.mass, params.inertia[2]], dtype=float)
+    if params.hydro is not None:
+        return rigid + np.diag(params.hydro.added_mass_inf)[[0, 1, 5]]
+    return rigid + np.asarray(params.added_mass, dtype=float)[[0, 1, 5]]
 
 
 def _windage(params: BoatParams, given: Windage, z_eq: float) -> Windage:

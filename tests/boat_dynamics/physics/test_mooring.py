@@ -78,3 +78,46 @@ def test_a_free_boat_beside_a_moored_one_steps_as_if_alone():
     np.testing.assert_allclose(state.orientation[1], single.orientation[0], rtol=0, atol=1e-12)
     assert np.abs(step.forces.mooring.force[0]).max() > 0.0
     assert not step.forces.mooring.force[1].any()
+
+
+def test_the_mooring_key_holds_a_boat_where_it_starts():
+    # `mooring: {period: 20}`: anchored at the start pose of each boat (two boats sharing their
+    # parameters, each its own anchor); started at 0.5 m/s ahead in still water without other
+    # damping, x(t) = v0 t e^{-omega t} (critically damped, peak v0 / (omega e) at 1 / omega),
+    # within 1 % of the peak, and back to the anchor
+    period, v0 = 20.0, 0.5
+    boat = {"damping": NO_DAMPING, "buoyancy": {"pressure": "hydrostatic"},
+            "hydrodynamics": {"coefficients": "none"}, "mooring": {"period": period}}
+    sc = pipeline.init_scenario(parse_scenario({"boats": [
+        {"name": "a", **boat, "initial_pose": {"position": [5.0, -3.0, 0.0], "yaw_deg": 30.0,
+                                               "velocity": [v0, 0.0, 0.0]}},
+        {"name": "b", **boat, "initial_pose": {"position": [-5.0, 0.0, 0.0]}}]}))
+    a, b = sc.boats
+    assert a.params.mooring.anchor == pytest.approx([5.0, -3.0, math.radians(30.0)])
+    assert b.params.mooring.anchor == pytest.approx([-5.0, 0.0, 0.0])
+    system, state = pipeline.start(sc.boats, WaveField())
+    omega, dt = 2 * math.pi / period, 0.01
+    inputs = FleetInputs.stack([BoatInputs()] * 2)
+    along = np.array([math.cos(math.radians(30.0)), math.sin(math.radians(30.0))])
+    for t_end in (1 / omega, 2 / omega, 3 * period):
+        while state.t < t_end - dt / 2:
+            state = pipeline.step(system, state, inputs, WaveField(), dt).state
+        x = float((state.position[0, :2] - [5.0, -3.0]) @ along)
+        expected = v0 * state.t * math.exp(-omega * state.t)
+        assert x == pytest.approx(expected, abs=0.01 * v0 / (omega * math.e)), state.t
+    assert np.abs(state.position[1, :2] - [-5.0, 0.0]).max() < 1e-9  # b: never moved
+    assert parse_scenario({"boats": [boat]}).boats[0].params.derive.mooring_period == period
+    assert parse_scenario({"boats": [{}]}).boats[0].params.derive.mooring_period is None
+
+
+@pytest.mark.parametrize(("value", "key", "allowed"), [
+    ({"period": 2.0}, "boats[0].mooring.period", "[5, 3600] s"),
+    ({"period": float("inf")}, "boats[0].mooring.period", "finite"),
+    ({"stiffness": 3.0}, "boats[0].mooring.stiffness", "allowed keys here: period"),
+    (5, "boats[0].mooring", "mapping")])
+def test_a_bad_mooring_is_refused_with_its_key(value, key, allowed):
+    from boat_dynamics.physics.scenario import ScenarioError
+
+    with pytest.raises(ScenarioError) as err:
+        parse_scenario({"boats": [{"mooring": value}]})
+    assert err.value.key == key and allowed in err.value.allowed

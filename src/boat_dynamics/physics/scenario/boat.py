@@ -66,7 +66,8 @@ RADIATING_CRITICAL_RATIO = (0.1, 0.1, 0.1)
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
-              "inertia_scale", "inertia_products", "hydrodynamics", "sensors", "windage")
+              "inertia_scale", "inertia_products", "hydrodynamics", "sensors", "windage",
+              "mooring")
 
 
 #: A boat's keys that leave its parameters (BoatParams) alone.
@@ -141,8 +142,23 @@ def _boat_params(d: Mapping[str, Any], key: str, sim: SimulationSettings, base_d
     params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
                                  {} if loaded is None else loaded)
     params = replace(params, derive=replace(params.derive, windage=_windage(
-        mapping(d.get("windage"), f"{key}.windage"), f"{key}.windage")))
+        mapping(d.get("windage"), f"{key}.windage"), f"{key}.windage"),
+        mooring_period=_mooring_period(d.get("mooring"), f"{key}.mooring")))
     return params, tuple(thruster_names)
+
+
+def _mooring_period(raw: Any, key: str) -> float | None:
+    """``mooring``: a soft mooring's natural period, s; None without the block (free).
+
+    A towing tank's soft springs on x, y and heading, anchored where the boat starts
+    (:mod:`boat_dynamics.physics.mooring`): for seakeeping at zero speed, a period of many
+    wave periods so that they leave the wave-frequency motion alone.
+    """
+    md = mapping(raw, key)
+    only(md, key, ("period",))
+    period = number(md, "period", key, 60.0, 5.0, 3600.0, unit="s",
+                    default_doc="60 with a mooring block; without one the boat is free")
+    return None if raw is None else period
 
 
 def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
