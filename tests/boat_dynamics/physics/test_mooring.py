@@ -121,3 +121,16 @@ def test_a_bad_mooring_is_refused_with_its_key(value, key, allowed):
     with pytest.raises(ScenarioError) as err:
         parse_scenario({"boats": [{"mooring": value}]})
     assert err.value.key == key and allowed in err.value.allowed
+
+
+def test_boatsim_rao_holds_a_moored_boat_with_its_own_mooring():
+    # regular_wave_response sets a mooring of 15 wave periods; a scenario's stiff 5 s
+    # mooring, which would change the response near it, is cleared: the same answer bit for bit
+    from boat_dynamics.physics.seakeeping import regular_wave_response
+
+    boat = {"buoyancy": {"pressure": "hydrostatic"}, "hydrodynamics": {"coefficients": "none"}}
+    free = parse_scenario({"boats": [boat]}).boats[0].params
+    moored = parse_scenario({"boats": [{**boat, "mooring": {"period": 5.0}}]}).boats[0].params
+    run = {"settle": 1.0, "periods": 2, "max_time": 10.0}  # one window: the first answer
+    assert regular_wave_response(moored, 12.0, math.pi / 2, 0.05, **run) == (
+        regular_wave_response(free, 12.0, math.pi / 2, 0.05, **run))
