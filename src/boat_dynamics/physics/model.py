@@ -12,6 +12,7 @@ from typing import Literal
 import numpy as np
 
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
+from boat_dynamics.physics.carriage import Carriage
 from boat_dynamics.physics.control import ControlSettings
 from boat_dynamics.physics.hull import BoxHull, HullMesh, box_mesh
 from boat_dynamics.physics.hydro import HydroCoefficients, hydro_key
@@ -139,7 +140,9 @@ class BoatParams:
         radiation_memory: the Cummins radiation memory (:mod:`boat_dynamics.physics.radiation`),
             or None.
         mooring: a soft mooring holding the boat on station (:mod:`.mooring`; the RAO runs
-            of :mod:`.seakeeping`), or None.
+            of :mod:`.seakeeping`, the ``mooring`` key), or None.
+        carriage: a towing carriage prescribing its speed along a line, heave, roll and
+            pitch free (:mod:`.carriage`, the ``carriage`` key), or None.
         water_velocity: where the water velocity of the damping is taken
             (:data:`WaterVelocity`).
         windage: what the wind acts on (:mod:`.wind`), or None: no wind load.
@@ -170,6 +173,7 @@ class BoatParams:
     added_mass_matrix: np.ndarray | None = None
     radiation_memory: RadiationMemory | None = None
     mooring: Mooring | None = None
+    carriage: Carriage | None = None
     water_velocity: WaterVelocity = "reference_point"
     windage: Windage | None = None
 

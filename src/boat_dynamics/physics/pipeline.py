@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from boat_dynamics.physics import contact as _contact
+from boat_dynamics.physics.carriage import towed_velocity
 from boat_dynamics.physics.contact import Contact
 from boat_dynamics.physics.damping import velocity_decay
 from boat_dynamics.physics.forces import forces
@@ -29,8 +30,10 @@ from boat_dynamics.physics.modes import apply_modes, pd_torques
 from boat_dynamics.physics.propulsion import lagged_throttle
 from boat_dynamics.physics.radiation import advance
 from boat_dynamics.physics.rigid_body import (
+    advance_pose,
     integrate,
     integrate_coupled,
+    mass_matrix,
     quat_to_euler,
     rotation_matrix,
 )
@@ -69,11 +72,15 @@ class Step:
         forces: the wrenches that acted during the step (body frames, about the centres of
             mass), evaluated at the start of the step.
         contact: the surface contact at the start of the step, which the forces came from.
+        towing: (B, 3) the towing carriages' force along and across their lines (N) and yaw
+            moment (N m), world frame, over the step (the towed boats' resistance; zero for
+            a boat not towed), or None when no boat is towed (:mod:`.carriage`).
     """
 
     state: FleetState
     forces: FleetForces
     contact: Contact
+    towing: np.ndarray | None = None
 
 
 def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, FleetState]:
@@ -112,15 +119,19 @@ def init(system: System, state: FleetState, sea: WaveField) -> tuple[System, Fle
 
 
 def _anchored(params: BoatParams, state: FleetState, i: int) -> BoatParams:
-    """``params`` with a mooring still to anchor (``mooring`` key) held where boat i starts.
+    """``params`` with its mooring or carriage still to place held where boat i starts.
 
-    The anchor: the world x, y (m) of its centre of mass and its heading (rad) in ``state``.
+    The ``mooring`` key's anchor, and the ``carriage`` key's line: the world x, y (m) of the
+    boat's centre of mass and its heading (rad) in ``state``.
     """
-    if params.mooring is None or not np.isnan(params.mooring.anchor).any():
-        return params
     heading = quat_to_euler(state.orientation[i])[2]
-    anchor = np.array([state.position[i, 0], state.position[i, 1], heading])
-    return replace(params, mooring=replace(params.mooring, anchor=anchor))
+    if params.mooring is not None and np.isnan(params.mooring.anchor).any():
+        anchor = np.array([state.position[i, 0], state.position[i, 1], heading])
+        params = replace(params, mooring=replace(params.mooring, anchor=anchor))
+    if params.carriage is not None and math.isnan(params.carriage.heading):
+        params = replace(params, carriage=replace(
+            params.carriage, origin=state.position[i, :2].copy(), heading=heading))
+    return params
 
 
 def _panelled(params: BoatParams, sea: WaveField) -> BoatParams:
@@ -254,6 +265,7 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     v = reflect_off_keel(v, system.keel_rate, dt)
     if system.decay is not None:
         v, w = velocity_decay(v, w, system.decay, dt)
+    towing = _towed(system, state, (p, q, v, w), contact.immersion, dt) if system.towed else None
     after = FleetState(state.t + dt, p, q, v, w, throttle, state.control_weight)
     if system.special:
         after = apply_modes(system, state, after, sea, dt)
@@ -264,7 +276,35 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     if slamming:
         after = replace(after, slamming=_waterline_now(system, state, slamming),
                         swept=_swept_now(system, state, slamming))
-    return Step(after, acting, contact)
+    return Step(after, acting, contact, towing)
+
+
+def _towed(system: System, state: FleetState, into: tuple[np.ndarray, ...],
+           immersion: np.ndarray, dt: float) -> np.ndarray:
+    """Overwrite the towed boats' rows of ``into`` (p, q, v, w) by the carriage's constraint.
+
+    Their velocities are constrained (:func:`.carriage.towed_velocity`, with the mass matrix
+    the step integrated with) and their poses advanced again from ``state`` with them.
+
+    Returns:
+        (B, 3) the carriages' force along and across their lines (N) and yaw moment (N m),
+        world frame; zero for a boat not towed.
+    """
+    p, q, v, w = into
+    out = np.zeros((system.count, 3))
+    for i in system.towed:
+        params = system.params[i]
+        if i in system.coupled:
+            k = system.coupled.index(i)
+            mass = system.rigid_mass_matrix[k] + immersion[i] * system.added_mass_matrix[k]
+        else:
+            mass = (mass_matrix(params.mass, params.inertia, params.inertia_products)
+                    + np.diag(params.added_mass))
+        nu, out[i] = towed_velocity(params.carriage, mass, rotation_matrix(q[i]), p[i],
+                                    np.concatenate([v[i], w[i]]), dt)
+        p[i], q[i], v[i], w[i] = advance_pose(state.position[i], state.orientation[i],
+                                              nu[:3], nu[3:], dt)
+    return out
 
 
 def _waterline_now(system: System, state: FleetState, groups: list) -> np.ndarray:

@@ -18,6 +18,7 @@ import numpy as np
 from boat_dynamics.physics.wrench import cross
 
 __all__ = [
+    "advance_pose",
     "inertia_tensor",
     "integrate",
     "integrate_coupled",
@@ -241,6 +242,16 @@ def integrate_coupled(
     nu_dot = np.einsum("...ij,...j->...i", mass_matrix_inverse, rhs)
     return _advance(position, orientation, velocity + dt * nu_dot[..., :3],
                     angular_velocity + dt * nu_dot[..., 3:], dt)
+
+
+def advance_pose(position: np.ndarray, orientation: np.ndarray, v: np.ndarray, w: np.ndarray,
+                 dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The pose after ``dt`` s at body velocities ``v`` (m/s), ``w`` (rad/s): semi-implicit Euler.
+
+    As :func:`integrate` moves a body once its new velocities are known (a constraint that
+    changed them: :mod:`.carriage`). Shapes as :func:`integrate`'s.
+    """
+    return _advance(position, orientation, v, w, dt)
 
 
 def _advance(position: np.ndarray, orientation: np.ndarray, v: np.ndarray, w: np.ndarray,

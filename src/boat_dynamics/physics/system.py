@@ -327,6 +327,7 @@ class System:
         windage: (B, 6) A_F, A_L, L_oa, c_x, c_y, c_n (:mod:`.wind`; zero for a boat without
             windage), or None when no boat has any.
         windage_centre: (B, 3) m, body frames, where the wind's force acts, or None.
+        towed: the boats on a towing carriage (:mod:`.carriage`).
     """
 
     params: tuple[BoatParams, ...]
@@ -356,6 +357,7 @@ class System:
     mooring: Mooring | None = None
     windage: np.ndarray | None = None
     windage_centre: np.ndarray | None = None
+    towed: tuple[int, ...] = ()
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -390,6 +392,7 @@ class System:
             **_coupling(ps),
             mooring=_moorings(ps),
             **_windages(ps),
+            towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
         )
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from boat_dynamics.physics.carriage import Carriage
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
 from boat_dynamics.physics.hydro import (
@@ -67,7 +68,7 @@ _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "b
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
               "inertia_scale", "inertia_products", "hydrodynamics", "sensors", "windage",
-              "mooring")
+              "mooring", "carriage")
 
 
 #: A boat's keys that leave its parameters (BoatParams) alone.
@@ -138,16 +139,31 @@ def _boat_params(d: Mapping[str, Any], key: str, sim: SimulationSettings, base_d
         stokes_drift=flag(d, "stokes_drift", key, False),
         control=control_block(d, key),
         water_velocity=choice(dd, "water_velocity", dk, "reference_point", WATER_VELOCITIES),
+        carriage=_carriage(d.get("carriage"), f"{key}.carriage"),
     )
     params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
                                  {} if loaded is None else loaded)
     params = replace(params, derive=replace(params.derive, windage=_windage(
         mapping(d.get("windage"), f"{key}.windage"), f"{key}.windage"),
-        mooring_period=_mooring_period(d.get("mooring"), f"{key}.mooring")))
+        mooring_period=_mooring_period(d.get("mooring"), f"{key}.mooring",
+                                       params.carriage is not None)))
     return params, tuple(thruster_names)
 
 
-def _mooring_period(raw: Any, key: str) -> float | None:
+def _carriage(raw: Any, key: str) -> Carriage | None:
+    """``carriage``: towed at ``speed`` m/s along the line it starts on; None without the block.
+
+    A towing tank's carriage (:mod:`boat_dynamics.physics.carriage`): heave, roll and pitch
+    free, sway and yaw held; its force, the resistance, is :attr:`.pipeline.Step.towing`.
+    """
+    cd = mapping(raw, key)
+    only(cd, key, ("speed",))
+    speed = number(cd, "speed", key, 0.0, -MAX_SPEED, MAX_SPEED, unit="m/s",
+                   default_doc="0 with a carriage block; without one the boat is free")
+    return None if raw is None else Carriage(speed, np.full(2, np.nan), math.nan)
+
+
+def _mooring_period(raw: Any, key: str, towed: bool) -> float | None:
     """``mooring``: a soft mooring's natural period, s; None without the block (free).
 
     A towing tank's soft springs on x, y and heading, anchored where the boat starts
@@ -156,6 +172,8 @@ def _mooring_period(raw: Any, key: str) -> float | None:
     """
     md = mapping(raw, key)
     only(md, key, ("period",))
+    if raw is not None and towed:
+        raise ScenarioError(key, raw, "absent: a boat on a carriage is held by the carriage")
     period = number(md, "period", key, 60.0, 5.0, 3600.0, unit="s",
                     default_doc="60 with a mooring block; without one the boat is free")
     return None if raw is None else period
