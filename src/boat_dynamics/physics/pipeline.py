@@ -229,7 +229,8 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
             None: neither.
 
     Returns:
-        The state at t + dt, the forces that acted and the contact they came from.
+        The state at t + dt, the forces that acted, the contact they came from and the
+        towing carriages' force (:mod:`.carriage`).
 
     Raises:
         ValueError: ``contact`` belongs to another state or sea.
