@@ -124,11 +124,15 @@ def _anchored(params: BoatParams, state: FleetState, i: int) -> BoatParams:
     The ``mooring`` key's anchor, and the ``carriage`` key's line: the world x, y (m) of the
     boat's centre of mass and its heading (rad) in ``state``.
     """
+    moor = params.mooring is not None and np.isnan(params.mooring.anchor).any()
+    tow = params.carriage is not None and math.isnan(params.carriage.heading)
+    if not (moor or tow):  # nearly every boat: no attitude to convert at start-up
+        return params
     heading = quat_to_euler(state.orientation[i])[2]
-    if params.mooring is not None and np.isnan(params.mooring.anchor).any():
+    if moor:
         anchor = np.array([state.position[i, 0], state.position[i, 1], heading])
         params = replace(params, mooring=replace(params.mooring, anchor=anchor))
-    if params.carriage is not None and math.isnan(params.carriage.heading):
+    if tow:
         params = replace(params, carriage=replace(
             params.carriage, origin=state.position[i, :2].copy(), heading=heading))
     return params
