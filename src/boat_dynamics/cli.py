@@ -359,6 +359,10 @@ def _add_rao(verbs) -> None:
     rao.add_argument("--amplitude", type=_finite, metavar="M",
                      help="wave amplitude, m (default: 0.5 %% of the boat length, at most "
                           "k a = 0.05)")
+    rao.add_argument("--speed", type=_finite, metavar="M/S", default=0.0,
+                     help="towed ahead at this speed on a carriage, heave, roll and pitch free "
+                          "(negative: astern); the table adds the encounter frequency and "
+                          "the plot draws against it (default: 0, held by a soft mooring)")
     rao.add_argument("-o", "--output", metavar="FILE.png",
                      help="the plot (default: SCENARIO-NAME_rao.png here)")
 
@@ -377,19 +381,23 @@ def _rao(args: argparse.Namespace) -> int:
     try:
         scenario = load_scenario(path)
         points = rao_points(scenario, args.boat, args.wavelengths, args.directions_deg,
-                            args.amplitude)
+                            args.amplitude, args.speed)
     except (ScenarioError, RaoError) as exc:
         print(f"boatsim rao: error: {exc}", file=sys.stderr)
         return 2
     boat = next(b for b in scenario.boats if args.boat in (None, b.name))
     length = boat.params.hull.length
+    sea = scenario.sea
+    towed = (f"towed at {args.speed:g} m/s (Froude number "
+             f"{args.speed / math.sqrt(sea.gravity * length):.3g}); ") if args.speed else ""
     print(f"boatsim rao: {path}, boat {boat.name or '(root namespace)'}, length {length:g} m; "
-          f"(pf) = linear potential flow" + ("" if boat.params.hydro is not None else
-                                             " (none: no hydrodynamics.coefficients)"))
+          f"{towed}(pf) = linear potential flow" + ("" if boat.params.hydro is not None else
+                                                    " (none: no hydrodynamics.coefficients)"))
     print(format_table(points, length))
     out = plot_raos(points, length, args.output or f"{path.stem}_rao.png",
                     f"{path.name}: boat {boat.name or '(root)'}, RAOs of the centre of mass",
-                    theory_curve(boat.params, scenario.sea.gravity, scenario.sea.depth))
+                    theory_curve(boat.params, sea.gravity, sea.depth, args.speed),
+                    sea.gravity, sea.depth)
     print(f"boatsim: wrote {out}")
     return 0
 

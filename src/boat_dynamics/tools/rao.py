@@ -4,7 +4,9 @@ Each point runs the boat alone in one small regular wave
 (:func:`boat_dynamics.physics.seakeeping.regular_wave_response`); when the boat has a
 potential-flow coefficient file, the frequency-domain RAO of that file is printed and drawn
 beside it (:func:`boat_dynamics.physics.seakeeping.potential_flow_rao`), so a user can check
-their own hull against theory.
+their own hull against theory. At a ``speed`` the boat is towed on a carriage, as in a towing
+tank, and meets the waves at the encounter frequency omega_e = omega - k U cos(beta): the
+table gives it, and the plot draws against it.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.seakeeping import (
     Response,
+    encounter_frequency,
     potential_flow_rao,
     regular_wave_response,
     rigid_body_matrix,
@@ -37,6 +40,12 @@ _DEG = np.array([1.0, 180 / math.pi, 180 / math.pi])
 
 #: Wave directions (travelling toward, relative to the bow) of a default run: head, beam seas.
 DEFAULT_DIRECTIONS_DEG = (180.0, 90.0)
+#: m/s, the largest towing speed ahead or astern (the ``carriage`` key's bound).
+MAX_SPEED = 50.0
+#: The dofs a carriage holds: surge, sway, yaw.
+_CARRIAGE = (0, 1, 5)
+#: s of simulated time a point may take at most (:func:`.seakeeping.regular_wave_response`).
+MAX_TIME = 300.0
 
 
 class RaoError(ValueError):
@@ -68,7 +77,7 @@ def _boat(scenario: Scenario, name: str | None) -> BoatSpec:
 
 
 def _check(wavelengths: Sequence[float], directions_deg: Sequence[float],
-           amplitude: float | None) -> None:
+           amplitude: float | None, speed: float) -> None:
     for value in wavelengths:
         if not (math.isfinite(value) and 0.05 <= value <= 100.0):
             raise RaoError(f"--wavelengths: {value!r} is not allowed: wavelengths are in boat "
@@ -78,12 +87,29 @@ def _check(wavelengths: Sequence[float], directions_deg: Sequence[float],
             raise RaoError(f"--directions-deg: {value!r} is not allowed: a finite angle")
     if amplitude is not None and not (math.isfinite(amplitude) and amplitude > 0.0):
         raise RaoError(f"--amplitude: {amplitude!r} is not allowed: metres, > 0")
+    if not (math.isfinite(speed) and abs(speed) <= MAX_SPEED):
+        raise RaoError(f"--speed: {speed!r} is not allowed: m/s ahead (negative: astern), "
+                       f"from -{MAX_SPEED:g} to {MAX_SPEED:g}")
+
+
+def _met(wavelength: float, direction: float, speed: float, gravity: float, depth: float
+         ) -> float:
+    """rad/s, |omega_e| of the wave; RaoError if the boat would ride it."""
+    k = 2 * math.pi / wavelength
+    encounter = abs(encounter_frequency(float(angular_frequency(k, gravity, depth)), k, speed,
+                                        direction))
+    if encounter * MAX_TIME < 20 * math.pi:
+        raise RaoError(f"--speed: {speed!r} m/s rides the wave of {wavelength:.3g} m from "
+                       f"{math.degrees(direction):g} deg (encounter frequency "
+                       f"{encounter:.3g} rad/s: fewer than 10 encounters in {MAX_TIME:g} s); "
+                       f"leave out that wavelength or direction")
+    return encounter
 
 
 def rao_points(scenario: Scenario, boat: str | None = None,
                wavelengths: Sequence[float] = DEFAULT_WAVELENGTHS,
                directions_deg: Sequence[float] = DEFAULT_DIRECTIONS_DEG,
-               amplitude: float | None = None) -> list[RaoPoint]:
+               amplitude: float | None = None, speed: float = 0.0) -> list[RaoPoint]:
     """Run the scenario's boat in each regular wave (direction-major order).
 
     Args:
@@ -94,22 +120,29 @@ def rao_points(scenario: Scenario, boat: str | None = None,
         directions_deg: the waves' direction of travel relative to the bow, degrees
             (180 head seas, 90 beam seas from starboard, 0 following seas).
         amplitude: m; default 0.5 % of the boat length, at most a steepness k a of 0.05.
+        speed: m/s ahead on a towing carriage (0: held by a soft mooring); the scenario's
+            own mooring or carriage is replaced.
 
     Raises:
-        RaoError: an option out of range or an unknown boat.
+        RaoError: an option out of range, a wave the boat would ride, or an unknown boat.
     """
-    _check(wavelengths, directions_deg, amplitude)
+    _check(wavelengths, directions_deg, amplitude, speed)
     spec = _boat(scenario, boat)
     params, sea = spec.params, scenario.sea
     length = params.hull.length
-    curve = theory_curve(params, sea.gravity, sea.depth)
+    directions = np.radians(np.asarray(directions_deg, dtype=float))
+    for direction in directions:
+        for multiple in wavelengths:
+            _met(multiple * length, float(direction), speed, sea.gravity, sea.depth)
+    curve = theory_curve(params, sea.gravity, sea.depth, speed)
     points = []
-    for direction in np.radians(np.asarray(directions_deg, dtype=float)):
+    for direction in directions:
         for multiple in wavelengths:
             wavelength = multiple * length
             a = amplitude or min(0.005 * length, 0.05 * wavelength / (2 * math.pi))
             r = regular_wave_response(params, wavelength, float(direction), a,
-                                      gravity=sea.gravity, depth=sea.depth)
+                                      gravity=sea.gravity, depth=sea.depth,
+                                      max_time=MAX_TIME, speed=speed)
             theory = None if curve is None else curve(np.array([wavelength]),
                                                       float(direction))[0]
             points.append(RaoPoint(r, theory))
@@ -119,7 +152,7 @@ def rao_points(scenario: Scenario, boat: str | None = None,
 def format_table(points: Sequence[RaoPoint], length: float) -> str:
     """The points as a text table: heave m/m, roll and pitch deg/m, potential flow beside."""
     lines = ["direction_deg  lambda/L  lambda_m  omega_rad_s  heave_m/m (pf)  "
-             "roll_deg/m (pf)  pitch_deg/m (pf)"]
+             "roll_deg/m (pf)  pitch_deg/m (pf)  omega_e_rad_s"]
     for p in points:
         r = p.response
         sim = (r.heave, math.degrees(r.roll), math.degrees(r.pitch))
@@ -128,13 +161,18 @@ def format_table(points: Sequence[RaoPoint], length: float) -> str:
                     f"{math.degrees(p.theory[2]):.2f}"))
         lines.append(f"{math.degrees(r.direction):13.1f}  {r.wavelength / length:8.2f}  "
                      f"{r.wavelength:8.2f}  {r.omega:11.3f}  {sim[0]:6.3f} ({pf[0]:>6})  "
-                     f"{sim[1]:7.2f} ({pf[1]:>6})  {sim[2]:7.2f} ({pf[2]:>6})")
+                     f"{sim[1]:7.2f} ({pf[1]:>6})  {sim[2]:7.2f} ({pf[2]:>6})  "
+                     f"{r.encounter:13.3f}")
     return "\n".join(lines)
 
 
-def theory_curve(params: BoatParams, gravity: float, depth: float
+def theory_curve(params: BoatParams, gravity: float, depth: float, speed: float = 0.0
                  ) -> Callable[[np.ndarray, float], np.ndarray] | None:
     """Potential flow's |heave|, |roll|, |pitch| at wavelengths (m) and a direction (rad).
+
+    At a ``speed`` (m/s), that of a boat on a carriage (surge, sway and yaw held) with the
+    zero-speed coefficients at the encounter frequency and the speed terms the simulation
+    carries (:func:`.seakeeping.potential_flow_rao`).
 
     With the boat's own linear viscous damping in roll, pitch and yaw (on its rates, as it is
     stepped; its viscous heave, sway and surge damping act on the velocity through the moving
@@ -147,19 +185,26 @@ def theory_curve(params: BoatParams, gravity: float, depth: float
     viscous[3:] = (derive(params) if params.derive is not None else params).damping_linear[3:]
 
     def curve(wavelengths: np.ndarray, direction: float) -> np.ndarray:
-        omega = angular_frequency(2 * math.pi / np.asarray(wavelengths), gravity, depth)
-        return np.array([np.abs(potential_flow_rao(params.hydro, mass, float(w), direction,
-                                                   viscous)[2:5]) for w in omega])
+        k = 2 * math.pi / np.asarray(wavelengths, dtype=float)
+        omega = angular_frequency(k, gravity, depth)
+        return np.array([np.abs(potential_flow_rao(
+            params.hydro, mass, float(w), direction, viscous,
+            encounter_frequency(float(w), float(kk), speed, direction), speed,
+            _CARRIAGE if speed else ())[2:5])
+            for w, kk in zip(omega, k, strict=True)])
 
     return curve
 
 
 def plot_raos(points: Sequence[RaoPoint], length: float, out: str | Path,
-              title: str = "", theory=None) -> Path:
+              title: str = "", theory=None, gravity: float = 9.81,
+              depth: float = math.inf) -> Path:
     """Heave, roll and pitch RAOs against lambda / L (PNG, headless); returns the path.
 
     Markers: simulated; lines: potential flow on 200 wavelengths between the first and the
-    last point (``theory``: :func:`theory_curve`), or through the points' own values.
+    last point (``theory``: :func:`theory_curve`), or through the points' own values. Points
+    at a speed are drawn against the encounter frequency |omega_e| (rad/s; the sea's
+    ``gravity``, m/s^2, and ``depth``, m, give it for the lines).
     """
     import matplotlib
 
@@ -171,24 +216,39 @@ def plot_raos(points: Sequence[RaoPoint], length: float, out: str | Path,
     for direction in directions:
         row = sorted((p for p in points if p.response.direction == direction),
                      key=lambda p: p.response.wavelength)
-        x = [p.response.wavelength / length for p in row]
+        speed = row[0].response.speed
+
+        def axis(wavelengths: np.ndarray, direction=direction, speed=speed) -> np.ndarray:
+            if speed == 0.0:
+                return wavelengths / length
+            k = 2 * math.pi / wavelengths
+            return np.abs(encounter_frequency(angular_frequency(k, gravity, depth), k, speed,
+                                              direction))
+
+        x = axis(np.array([p.response.wavelength for p in row]))
         sim = np.array([(p.response.heave, math.degrees(p.response.roll),
                          math.degrees(p.response.pitch)) for p in row])
         label = f"{math.degrees(direction):g} deg"
         for k, ax in enumerate(axes):
             line = ax.plot(x, sim[:, k], "o", label=f"boatsim, {label}")[0]
             if theory is not None:
-                dense = np.geomspace(x[0], x[-1], 200) if len(x) > 1 else np.array(x)
-                pf = theory(dense * length, direction) * _DEG
-                ax.plot(dense, pf[:, k], "--", color=line.get_color(),
+                ends = (row[0].response.wavelength, row[-1].response.wavelength)
+                dense = np.geomspace(*ends, 200) if len(row) > 1 else np.array(ends[:1])
+                pf = theory(dense, direction) * _DEG
+                ax.plot(axis(dense), pf[:, k], "--", color=line.get_color(),
                         label=f"potential flow, {label}")
             elif all(p.theory is not None for p in row):
                 pf = np.array([p.theory for p in row]) * _DEG
                 ax.plot(x, pf[:, k], "--", color=line.get_color(),
                         label=f"potential flow, {label}")
+    towed = any(p.response.speed != 0.0 for p in points)
     for ax, name in zip(axes, ("heave, m/m", "roll, deg/m", "pitch, deg/m"), strict=True):
-        ax.set_xscale("log")
-        ax.set_xlabel("wavelength / boat length")
+        if towed:
+            ax.set_xlabel(f"encounter frequency |omega_e|, rad/s "
+                          f"(speed {points[0].response.speed:g} m/s)")
+        else:
+            ax.set_xscale("log")
+            ax.set_xlabel("wavelength / boat length")
         ax.set_ylabel(name)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize="small")

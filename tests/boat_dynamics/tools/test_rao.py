@@ -75,6 +75,7 @@ def test_a_boat_with_coefficients_is_printed_beside_potential_flow(tmp_path, cap
     (["--wavelengths", "0"], "--wavelengths: 0.0 is not allowed"),
     (["--amplitude", "-1"], "--amplitude: -1.0 is not allowed: metres, > 0"),
     (["--boat", "nobody"], "--boat: 'nobody' is not a boat of the scenario"),
+    (["--speed", "60"], "--speed: 60.0 is not allowed: m/s ahead (negative: astern), from -50"),
 ])
 def test_a_bad_request_is_refused_naming_the_option(tmp_path, capsys, args, message):
     assert main(["rao", *args, "-o", str(tmp_path / "r.png")]) == 2
@@ -107,3 +108,27 @@ def test_the_potential_flow_curve_peaks_at_the_coupled_roll_resonance():
     assert omega == pytest.approx(3.067, rel=0.01)
     plain = {"boats": [{"hydrodynamics": {"coefficients": "none"}}]}
     assert theory_curve(parse_scenario(plain).boats[0].params, 9.81, math.inf) is None
+
+
+def test_towed_the_table_gives_the_encounter_frequency_and_a_ridden_wave_is_refused(
+        tmp_path, capsys):
+    # 1 m/s ahead into a 2 L head sea of the 4 m box: omega_e = omega + k U; in a following sea
+    # of one boat length the wave's speed is 2.50 m/s: towed at 2.5 m/s the boat rides it.
+    scenario = tmp_path / "box.yaml"
+    scenario.write_text(
+        "boats:\n  - {name: box, center_of_mass: [0, 0, -0.2],\n"
+        "     buoyancy: {pressure: froude_krylov}, carriage: {speed: 3},\n"
+        f"     hydrodynamics: {{coefficients: {BOX}}}}}\n")
+    assert main(["rao", str(scenario), "--speed", "2.5", "--wavelengths", "1",
+                 "--directions-deg", "0", "-o", str(tmp_path / "r.png")]) == 2
+    assert "--speed: 2.5 m/s rides the wave of 4 m from 0 deg" in capsys.readouterr().err
+    assert main(["rao", str(scenario), "--speed", "1", "--wavelengths", "2",
+                 "--directions-deg", "180", "-o", str(tmp_path / "r.png")]) == 0
+    out = capsys.readouterr().out
+    assert "towed at 1 m/s (Froude number 0.16)" in out
+    (row,) = _rows(out)
+    k = 2 * math.pi / 8.0
+    assert float(row[3]) == pytest.approx(math.sqrt(9.81 * k), abs=5e-4)
+    assert float(row[10]) == pytest.approx(math.sqrt(9.81 * k) + k, abs=5e-4)
+    assert float(row[8]) == pytest.approx(float(row[9]), rel=0.05)  # pitch, towed
+    assert (tmp_path / "r.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
