@@ -416,7 +416,15 @@ def _add_hydro(verbs) -> None:
     hydro.add_argument("-o", "--output", metavar="DIR",
                        help="where new files go (default: hydro/ beside the scenario)")
     hydro.add_argument("--panel-size", type=_finite, metavar="M",
-                       help="largest panel edge, m (default: L/40, at most B/16)")
+                       help="largest panel edge, m (default: L/40, at most the larger of B/16 "
+                            "and (T + B/2)/8, and fine enough for --shortest-wavelength)")
+    hydro.add_argument("--shortest-wavelength", type=_finite, metavar="L",
+                       help="the shortest wave, in boat lengths, the default panels resolve "
+                            "(panel edge at most a wavelength / 5.7, Capytaine's criterion; "
+                            "default: the hull alone sets them)")
+    hydro.add_argument("--dry-run", action="store_true",
+                       help="print each solve's panels, problems and estimated CPU time, and "
+                            "solve nothing (Capytaine not needed)")
     hydro.add_argument("--force", action="store_true",
                        help="solve again even if a file of the hull exists")
 
@@ -430,14 +438,18 @@ def _hydro(args: argparse.Namespace) -> int:
         scenario = load_scenario(path)
         files = coefficient_files(scenario, path.resolve().parent, args.boat,
                                   Path(args.output) if args.output else None, args.force,
-                                  args.panel_size, report=lambda line: print(line, flush=True))
+                                  args.panel_size, report=lambda line: print(line, flush=True),
+                                  shortest_wavelength=args.shortest_wavelength,
+                                  dry_run=args.dry_run)
     except (ScenarioError, HydroError, ValueError) as exc:
         print(f"boatsim hydro: error: {exc}", file=sys.stderr)
         return 2
     for f in files:
-        how = "found" if f.seconds is None else f"made in {f.seconds:.0f} s"
+        how = ("would be made" if f.seconds is None and f.plan is not None
+               else "found" if f.seconds is None else f"made in {f.seconds:.0f} s")
         print(f"boat {f.boat or '(root)'}: {f.path} ({how}; key {f.key})")
-    print("use them with `hydrodynamics: {coefficients: auto}` (or the path) in the boat")
+    if not args.dry_run:
+        print("use them with `hydrodynamics: {coefficients: auto}` (or the path) in the boat")
     return 0
 
 

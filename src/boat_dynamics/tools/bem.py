@@ -26,6 +26,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -41,12 +42,22 @@ from boat_dynamics.tools.bem_mesh import (
     mirror_symmetric,
 )
 
-__all__ = ["CAPYTAINE_VERSION", "DOF_NAMES", "conventions_text", "solve_hull", "write"]
+__all__ = ["CAPYTAINE_VERSION", "DOF_NAMES", "MAX_PANELS", "SolvePlan", "conventions_text",
+           "plan_hull", "solve_hull", "write"]
 
 LOG = logging.getLogger(__name__)
 
 #: The solver version the files are made and checked with (the ``bem`` extra pins it).
 CAPYTAINE_VERSION = "3.0.0"
+
+#: CPU seconds per (panel x block panel) and per block panel^3 of one frequency's 6 radiation
+#: and 5 diffraction problems (blocks: the symmetry's copies): fitted to five Capytaine 3.0.0
+#: solves on one thread (the 4 x 2 x 1 m box and a 3 m Wigley hull, 760-5,780 panels) within
+#: 21 %, measured with the machine's other core busy (docs/DESIGN.md, "boatsim hydro").
+ASSEMBLY_SECONDS, FACTOR_SECONDS = 1.07e-6, 2.55e-10
+
+#: The most hull + lid panels :func:`solve_hull` takes by default (memory ~ 0.3 kB x panels^2).
+MAX_PANELS = 8000
 
 #: Capytaine's rigid-body dof names, in the order of every 6-vector and 6 x 6 matrix.
 DOF_NAMES = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
@@ -153,11 +164,82 @@ def _rao(omegas, M, A, B, C, F) -> np.ndarray:
     return out
 
 
+@dataclass(frozen=True)
+class SolvePlan:
+    """What a solve will do, known before Capytaine is imported.
+
+    Attributes:
+        panels: hull panels, whole hull.
+        lid_panels: interior-lid panels, whole lid.
+        copies: 1, 2 or 4: the reflection symmetries' copies (each block is 1 / copies).
+        panel_size: m, the largest panel edge.
+        frequencies: solved, the two limits (0, infinity) included.
+        directions: wave directions of the diffraction problems.
+    """
+
+    panels: int
+    lid_panels: int
+    copies: int
+    panel_size: float
+    frequencies: int
+    directions: int
+
+    @property
+    def cpu_seconds(self) -> float:
+        """CPU seconds on one thread, estimated (:data:`ASSEMBLY_SECONDS`)."""
+        total = self.panels + self.lid_panels
+        block = total / self.copies
+        return self.frequencies * (ASSEMBLY_SECONDS * total * block
+                                   + FACTOR_SECONDS * self.copies * block**3)
+
+    def describe(self) -> str:
+        """One line: panels, frequencies, directions and the estimated CPU time."""
+        symmetry = {1: "", 2: ", one symmetry", 4: ", two symmetries"}[self.copies]
+        line = (f"{self.panels} hull + {self.lid_panels} lid panels of {self.panel_size:.3g} m"
+                f"{symmetry}, {self.frequencies} frequencies x {6 + self.directions} problems: "
+                f"about {_duration(self.cpu_seconds)} of CPU")
+        if self.panels + self.lid_panels > MAX_PANELS:
+            line += (f"; over the {MAX_PANELS}-panel limit (a hull mesh coarser than the "
+                     f"panels, or a larger panel size)")
+        return line
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 90 else f"{seconds / 60:.0f} min"
+
+
+def plan_hull(vertices, faces, *, draft_offset, gravity=9.81, omegas=None, directions=None,
+              panel_size=None, lid_panel_size=None, vertical_stretch=VERTICAL_STRETCH,
+              lid=True, symmetry=True, shortest_wavelength=math.inf
+              ) -> tuple[SolvePlan, dict, np.ndarray, np.ndarray]:
+    """The panels and the plan of :func:`solve_hull` (same arguments), without solving.
+
+    Returns:
+        The plan, the panels (:func:`immersed_panels`), the frequencies (rad/s) and the
+        directions (rad).
+    """
+    v, f = np.asarray(vertices, dtype=float), np.asarray(faces, dtype=np.int64)
+    omegas = (default_omegas(float(np.ptp(v[:, 0]))) if omegas is None
+              else np.asarray(omegas, dtype=float))
+    if directions is None:
+        directions = default_directions(mirror_symmetric(v, f, 1))
+    directions = np.asarray(directions, dtype=float)
+    mesh = immersed_panels(v, f, draft_offset=draft_offset, omega_max=float(omegas[-1]),
+                           panel_size=panel_size, lid_panel_size=lid_panel_size,
+                           vertical_stretch=vertical_stretch, gravity=gravity, lid=lid,
+                           symmetry=symmetry, shortest_wavelength=shortest_wavelength)
+    copies = (2 if mesh["sym_x"] else 1) * (2 if mesh["sym_y"] else 1)
+    plan = SolvePlan(copies * len(mesh["hull"]), copies * len(mesh["lid"]), copies,
+                     float(mesh["panel_size"]), len(omegas) + 2, len(directions))
+    return plan, mesh, omegas, directions
+
+
 def solve_hull(vertices, faces, *, draft_offset, mass, center_of_mass, inertia_matrix,
                water_density=1025.0, gravity=9.81, depth=float("inf"), omegas=None,
                directions=None, panel_size=None, lid_panel_size=None,
                vertical_stretch=VERTICAL_STRETCH, lid=True, symmetry=True,
-               max_panels=8000, description="") -> dict[str, np.ndarray]:
+               max_panels=MAX_PANELS, description="", shortest_wavelength=math.inf
+               ) -> dict[str, np.ndarray]:
     """Potential-flow coefficients of a hull floating upright at rest.
 
     Args:
@@ -179,6 +261,8 @@ def solve_hull(vertices, faces, *, draft_offset, mass, center_of_mass, inertia_m
         symmetry: exploit the mesh's exact reflection symmetries.
         max_panels: refuse meshes of more hull + lid panels (memory ~ 0.3 kB x panels^2).
         description: free text stored as ``hull``.
+        shortest_wavelength: m, the default panel size resolves it
+            (:func:`.bem_mesh.default_panel_size`).
 
     Returns:
         dict of NumPy arrays: those :func:`boat_dynamics.physics.hydro.load_coefficients`
@@ -191,18 +275,13 @@ def solve_hull(vertices, faces, *, draft_offset, mass, center_of_mass, inertia_m
     v, f = np.asarray(vertices, dtype=float), np.asarray(faces, dtype=np.int64)
     com = np.asarray(center_of_mass, dtype=float)
     M = np.asarray(inertia_matrix, dtype=float)
-    omegas = (default_omegas(float(np.ptp(v[:, 0]))) if omegas is None
-              else np.asarray(omegas, dtype=float))
-    if directions is None:
-        directions = default_directions(mirror_symmetric(v, f, 1))
-    directions = np.asarray(directions, dtype=float)
-    mesh = immersed_panels(v, f, draft_offset=draft_offset, omega_max=float(omegas[-1]),
-                           panel_size=panel_size, lid_panel_size=lid_panel_size,
-                           vertical_stretch=vertical_stretch, gravity=gravity, lid=lid,
-                           symmetry=symmetry)
-    copies = (2 if mesh["sym_x"] else 1) * (2 if mesh["sym_y"] else 1)
-    if copies * (len(mesh["hull"]) + len(mesh["lid"])) > max_panels:
-        raise ValueError(f"{copies * (len(mesh['hull']) + len(mesh['lid']))} panels exceed "
+    plan, mesh, omegas, directions = plan_hull(
+        v, f, draft_offset=draft_offset, gravity=gravity, omegas=omegas, directions=directions,
+        panel_size=panel_size, lid_panel_size=lid_panel_size,
+        vertical_stretch=vertical_stretch, lid=lid, symmetry=symmetry,
+        shortest_wavelength=shortest_wavelength)
+    if plan.panels + plan.lid_panels > max_panels:
+        raise ValueError(f"{plan.panels + plan.lid_panels} panels exceed "
                          f"max_panels = {max_panels}: raise panel_size or max_panels")
     cog = com - np.array([0.0, 0.0, draft_offset])  # calm-water frame
     out = _coefficients(mesh, cog, mass, M, omegas, directions,

@@ -10,8 +10,10 @@ reference point) floating upright at rest:
    to the half (quarter) used with the solver's reflection symmetries (exact: the other half
    is the mirror image). Each coarse face is then subdivided: quads into nu x nv bilinear
    grids, triangles into barycentric grids, edges at most ``panel_size`` with z lengths
-   counted twice (:data:`VERTICAL_STRETCH`: rows half as tall). Default size: L / 40, at most
-   B / 16 and 2.5 |z_lid|.
+   counted twice (:data:`VERTICAL_STRETCH`: rows half as tall). Default size
+   (:func:`default_panel_size`): L / 40, at most the larger of B / 16 and an eighth of the
+   half-girth T + B / 2, at most 2.5 |z_lid| and at most the shortest wavelength asked for
+   over :data:`PANELS_PER_WAVELENGTH`.
 2. The interior lid (against irregular frequencies; Lee & Newman, WAMIT manual, sec. 10;
    Babarit & Delhommeau 2015) is a grid of the same size over the hull's section at z_lid,
    clipped to the section. z_lid = 0.9 x ``lowest_lid_position(omega_max)`` (Capytaine's
@@ -28,9 +30,9 @@ import math
 
 import numpy as np
 
-__all__ = ["LID_FRACTION", "PANEL_PER_LID", "REL_TOL", "VERTICAL_STRETCH", "default_directions",
-           "default_omegas", "default_panel_size", "immersed_panels", "indexed",
-           "mirror_symmetric"]
+__all__ = ["LID_FRACTION", "PANELS_PER_WAVELENGTH", "PANEL_PER_LID", "REL_TOL",
+           "VERTICAL_STRETCH", "default_directions", "default_omegas", "default_panel_size",
+           "immersed_panels", "indexed", "mirror_symmetric"]
 
 LOG = logging.getLogger(__name__)
 
@@ -39,6 +41,10 @@ LID_FRACTION = 0.9
 
 #: Largest panel edge as a multiple of the lid depth |z_lid|.
 PANEL_PER_LID = 2.5
+
+#: Panel edges per wavelength: Capytaine's criterion, panel radius (about edge / sqrt 2) at most
+#: a wavelength / 8 (Capytaine 3.0 documentation, "Mesh resolution").
+PANELS_PER_WAVELENGTH = 8.0 / math.sqrt(2.0)
 
 #: Hull panel edges are measured with their z component times this (rows half as tall).
 VERTICAL_STRETCH = 2.0
@@ -63,16 +69,27 @@ def default_directions(symmetric: bool) -> np.ndarray:
     return np.radians(np.arange(0.0, stop + 1.0, 45.0))
 
 
-def default_panel_size(extents, z_lid: float = math.nan) -> float:
+def default_panel_size(extents, z_lid: float = math.nan, draft: float = math.nan,
+                       shortest_wavelength: float = math.inf) -> float:
     """Panel edge length, m, for a hull of bounding-box ``extents`` (L, B, H) and lid depth.
 
-    L / 40, at most B / 16 and at most PANEL_PER_LID x |z_lid| (coarser lid panels over a
-    thin top row of hull panels give spurious spikes at high frequencies). With
-    ``VERTICAL_STRETCH`` = 2 (rows half as tall): 0.1 m for the 4 x 2 x 1 m box, within 1.1 %
-    of a 1.2 times finer mesh and within 1 % of the reference file.
+    L / 40; at most B / 16, or an eighth of the immersed half-girth T + B / 2 where that is
+    larger (a slender hull: B / 16 alone gives a 3 x 0.3 m Wigley hull, T 0.19 m, 0.019 m
+    panels); at most PANEL_PER_LID x |z_lid| (coarser lid panels over a thin top row of hull
+    panels give spurious spikes at high frequencies); at most ``shortest_wavelength`` (m) /
+    :data:`PANELS_PER_WAVELENGTH`. With ``VERTICAL_STRETCH`` = 2 (rows half as tall): 0.1 m
+    for the 4 x 2 x 1 m box, within 1.1 % of a 1.2 times finer mesh and within 1 % of the
+    reference file.
+
+    Args:
+        extents: (3,) m, the hull's bounding box.
+        z_lid: m, the lid's depth below the calm water (negative), nan: no lid.
+        draft: T, m, the immersed depth (nan: B / 16 alone).
+        shortest_wavelength: m.
     """
     length, beam = float(extents[0]), float(extents[1])
-    size = min(length / 40.0, beam / 16.0)
+    across = beam / 16.0 if math.isnan(draft) else max(beam / 16.0, (draft + beam / 2) / 8.0)
+    size = min(length / 40.0, across, shortest_wavelength / PANELS_PER_WAVELENGTH)
     return size if math.isnan(z_lid) else min(size, PANEL_PER_LID * abs(z_lid))
 
 
@@ -447,8 +464,8 @@ def _signed_area(loop: np.ndarray) -> float:
 def immersed_panels(vertices, faces, *, draft_offset: float, omega_max: float,
                     panel_size: float | None = None, lid_panel_size: float | None = None,
                     vertical_stretch: float = VERTICAL_STRETCH, gravity: float = 9.81,
-                    lid: bool = True,
-                    symmetry: bool = True) -> dict:
+                    lid: bool = True, symmetry: bool = True,
+                    shortest_wavelength: float = math.inf) -> dict:
     """Panels of the immersed hull and of its interior lid, in the calm-water frame.
 
     Args:
@@ -462,6 +479,7 @@ def immersed_panels(vertices, faces, *, draft_offset: float, omega_max: float,
         gravity: m/s^2.
         lid: False for no lid.
         symmetry: use the y = 0 / x = 0 reflection symmetries when the mesh has them.
+        shortest_wavelength: m, for the default panel size.
 
     Returns:
         dict: ``hull`` and ``lid`` (P, 4, 3) panels (triangles repeat their last corner) of
@@ -480,7 +498,8 @@ def immersed_panels(vertices, faces, *, draft_offset: float, omega_max: float,
     draft = -float(np.concatenate(wet)[:, 2].min())
     z_low = _lowest_lid_position(_section_loops(wet, 0.0, tol), omega_max, gravity)
     z_lid = _lid_level(wet, z_low, draft) if lid and z_low > -math.inf else math.nan
-    size = default_panel_size(np.ptp(v, axis=0), z_lid) if panel_size is None else panel_size
+    size = (default_panel_size(np.ptp(v, axis=0), z_lid, draft, shortest_wavelength)
+            if panel_size is None else panel_size)
     lid_polys = []
     if not math.isnan(z_lid):
         above = _clip(wet, (0, 0, -1), -z_lid, tol)

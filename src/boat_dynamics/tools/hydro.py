@@ -4,7 +4,10 @@ Each boat's file is keyed by its hull mesh, mass properties and water
 (:func:`boat_dynamics.physics.model.coefficients_key`); a hull whose file already exists where
 ``coefficients: auto`` looks (:func:`boat_dynamics.physics.hydro.coefficient_directories`) is
 not solved again. New files are solved with Capytaine (:mod:`boat_dynamics.tools.bem`, the
-``bem`` extra) for the hull floating upright at rest at its own equilibrium.
+``bem`` extra) for the hull floating upright at rest at its own equilibrium. Before a solve
+starts, its plan is reported: panels (fitted to the hull and to the shortest wavelength asked
+for, :func:`boat_dynamics.tools.bem_mesh.default_panel_size`), frequencies, problems and the
+estimated CPU time (:class:`boat_dynamics.tools.bem.SolvePlan`); ``dry_run`` stops there.
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from boat_dynamics.physics.model import BoatParams, coefficients_key, hull_mesh
 from boat_dynamics.physics.rigid_body import mass_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.tuning import equilibrium_height
+from boat_dynamics.tools.bem import MAX_PANELS, SolvePlan, plan_hull
 
 __all__ = ["HullFile", "HydroError", "coefficient_files", "describe"]
 
@@ -38,13 +42,16 @@ class HullFile:
         boat: the boat's name.
         key: the hull's key.
         path: the file.
-        seconds: wall time of the solve; None when the file was already there.
+        seconds: wall time of the solve; None when the file was already there or the run
+            was dry.
+        plan: the solve's plan; None when the file was already there.
     """
 
     boat: str
     key: str
     path: Path
     seconds: float | None
+    plan: SolvePlan | None = None
 
 
 def describe(params: BoatParams, z_eq: float) -> str:
@@ -82,7 +89,8 @@ def _solver():
 def coefficient_files(scenario: Scenario, scenario_dir: Path,
                       boats: Sequence[str] | None = None, out_dir: Path | None = None,
                       force: bool = False, panel_size: float | None = None,
-                      report=lambda line: None) -> list[HullFile]:
+                      report=lambda line: None, shortest_wavelength: float | None = None,
+                      dry_run: bool = False) -> list[HullFile]:
     """Find or make the coefficient file of each boat (or of the boats named).
 
     Args:
@@ -94,6 +102,10 @@ def coefficient_files(scenario: Scenario, scenario_dir: Path,
         force: solve even if a file of the key exists.
         panel_size: m, the largest panel edge (default :func:`bem_mesh.default_panel_size`).
         report: called with a progress line before each solve.
+        shortest_wavelength: in boat lengths, the shortest wave the default panels resolve
+            (None: only the hull sets them).
+        dry_run: plan the solves (HullFile.plan, its path the one it would have) but run
+            none: Capytaine is not needed.
 
     Raises:
         HydroError: an unknown boat, or a solve needed without Capytaine installed.
@@ -101,6 +113,10 @@ def coefficient_files(scenario: Scenario, scenario_dir: Path,
     out_dir = Path(out_dir) if out_dir is not None else Path(scenario_dir) / "hydro"
     if panel_size is not None and not (math.isfinite(panel_size) and panel_size > 0.0):
         raise HydroError(f"--panel-size: {panel_size!r} is not allowed: metres, > 0")
+    if shortest_wavelength is not None and not (math.isfinite(shortest_wavelength)
+                                                and 0.01 <= shortest_wavelength <= 100.0):
+        raise HydroError(f"--shortest-wavelength: {shortest_wavelength!r} is not allowed: "
+                         f"boat lengths, from 0.01 to 100")
     files: list[HullFile] = []
     for spec in _selected(scenario, boats):
         params = spec.params
@@ -110,28 +126,45 @@ def coefficient_files(scenario: Scenario, scenario_dir: Path,
         if done is not None or found is not None:
             files.append(HullFile(spec.name, key, done.path if done else found, None))
             continue
-        files.append(_solve(spec, key, scenario.sea.depth, out_dir, panel_size, report))
+        shortest = (math.inf if shortest_wavelength is None
+                    else shortest_wavelength * spec.params.hull.length)
+        files.append(_solve(spec, key, scenario.sea.depth, out_dir,
+                            dict(panel_size=panel_size, shortest_wavelength=shortest),
+                            report, dry_run))
     return files
 
 
-def _solve(spec: BoatSpec, key: str, depth: float, out_dir: Path, panel_size: float | None,
-           report) -> HullFile:
-    """Solve one boat's hull at its equilibrium and write its file."""
-    bem = _solver()
+def _solve(spec: BoatSpec, key: str, depth: float, out_dir: Path, panels: dict, report,
+           dry_run: bool) -> HullFile:
+    """Plan, report, and (unless ``dry_run``) solve one boat's hull at its equilibrium.
+
+    ``panels``: :func:`.bem.solve_hull`'s ``panel_size`` and ``shortest_wavelength``.
+    """
     params = spec.params
     z_eq = equilibrium_height(params)
     stem = describe(params, z_eq)
-    report(f"boat {spec.name or '(root)'}: solving {stem} (key {key}); about a minute for a "
-           f"4 m box on one core")
     mesh = hull_mesh(params)
+    plan = plan_hull(mesh.vertices, mesh.faces, draft_offset=-z_eq, gravity=params.gravity,
+                     **panels)[0]
+    name, path = spec.name or "(root)", out_dir / f"{stem}_{key}.npz"
+    if not dry_run and plan.panels + plan.lid_panels > MAX_PANELS:
+        raise HydroError(f"boat {name}: {plan.panels + plan.lid_panels} panels are over the "
+                         f"{MAX_PANELS}-panel limit: give --panel-size more than "
+                         f"{plan.panel_size:.3g} m, or a hull mesh with fewer triangles "
+                         f"({len(mesh.faces)} now; each wetted one is a panel at least)")
+    report(f"boat {name}: {'would solve' if dry_run else 'solving'} {stem} (key {key}): "
+           f"{plan.describe()}")
+    if dry_run:
+        return HullFile(spec.name, key, path, None, plan)
+    bem = _solver()
     t0 = time.perf_counter()
     arrays = bem.solve_hull(
         mesh.vertices, mesh.faces, draft_offset=-z_eq, mass=params.mass,
         center_of_mass=params.center_of_mass,
         inertia_matrix=mass_matrix(params.mass, params.inertia, params.inertia_products),
         water_density=params.water_density, gravity=params.gravity, depth=depth,
-        panel_size=panel_size, description=stem)
+        description=stem, **panels)
     if str(arrays["key"]) != key:
         raise AssertionError(f"the solver keyed the file {arrays['key']}, expected {key}")
-    path = bem.write(out_dir / f"{stem}_{key}.npz", arrays)
-    return HullFile(spec.name, key, path, time.perf_counter() - t0)
+    path = bem.write(path, arrays)
+    return HullFile(spec.name, key, path, time.perf_counter() - t0, plan)

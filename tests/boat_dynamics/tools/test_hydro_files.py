@@ -168,10 +168,53 @@ def test_a_solve_without_capytaine_is_refused_with_the_install_hint(tmp_path, ca
 @pytest.mark.parametrize(("args", "message"), [
     (["--boat", "nobody"], "--boat: 'nobody' is not a boat of the scenario"),
     (["--panel-size", "0"], "--panel-size: 0.0 is not allowed: metres, > 0"),
+    (["--shortest-wavelength", "0.001"],
+     "--shortest-wavelength: 0.001 is not allowed: boat lengths, from 0.01 to 100"),
 ])
 def test_a_bad_option_is_refused_naming_it(args, message, capsys):
     assert main(["hydro", *args]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_the_default_panels_fit_the_hull_and_the_shortest_wave():
+    from boat_dynamics.tools.bem_mesh import PANELS_PER_WAVELENGTH, default_panel_size
+
+    # the 4 x 2 x 1 m box at draft 0.5 m: L / 40, as before (its files were made so)
+    assert default_panel_size((4.0, 2.0, 1.0), draft=0.5) == pytest.approx(0.1)
+    # a 3 x 0.3 m slender hull at draft 0.1875 m: an eighth of the half-girth T + B / 2,
+    # 0.042 m, where B / 16 alone gave 0.019 m (four times the panels)
+    assert default_panel_size((3.0, 0.3, 0.3), draft=0.1875) == pytest.approx(0.3375 / 8)
+    assert default_panel_size((3.0, 0.3, 0.3)) == pytest.approx(0.3 / 16)
+    # a shortest wave of 0.1 L resolved: edge at most a wavelength / 5.66
+    assert default_panel_size((4.0, 2.0, 1.0), draft=0.5, shortest_wavelength=0.4) == (
+        pytest.approx(0.4 / PANELS_PER_WAVELENGTH))
+    assert PANELS_PER_WAVELENGTH == pytest.approx(5.657, abs=1e-3)
+
+
+def test_a_dry_run_prints_the_plan_and_its_cost_and_needs_no_capytaine(tmp_path, capsys,
+                                                                      monkeypatch):
+    # The default box (4 x 2 x 1 m, draft 0.5 m): 2,120 hull + 800 lid panels of 0.1 m, two
+    # symmetries; 40 frequencies and the two limits, 6 radiation + 5 diffraction problems.
+    # The estimate: 42 x (1.07e-6 x 2920 x 730 + 2.55e-10 x 4 x 730^3) = 1.9 min (measured
+    # 3.04 s a frequency with the other core busy, 2026-12-03: 2.1 min).
+    monkeypatch.setitem(sys.modules, "capytaine", None)
+    assert main(["hydro", "--dry-run", "--force", "-o", str(tmp_path / "h")]) == 0
+    out = capsys.readouterr().out
+    assert ("would solve box_4x2x1_d0.500 (key 2b2dd4941ae3d992): 2120 hull + 800 lid panels "
+            "of 0.1 m, two symmetries, 42 frequencies x 11 problems: about 2 min of CPU") in out
+    assert "(would be made; key 2b2dd4941ae3d992)" in out
+    assert not (tmp_path / "h").exists()
+    # a shortest wave of 0.1 boat lengths: 0.0707 m panels, nearly three times the cost
+    assert main(["hydro", "--dry-run", "--force", "--shortest-wavelength", "0.1",
+                 "-o", str(tmp_path / "h")]) == 0
+    assert "4380 hull + 1740 lid panels of 0.0707 m" in capsys.readouterr().out
+
+
+def test_a_solve_over_the_panel_limit_is_refused_before_it_starts(tmp_path, capsys):
+    assert main(["hydro", "--force", "--panel-size", "0.03", "-o", str(tmp_path / "h")]) == 2
+    err = capsys.readouterr().err
+    assert "panels are over the 8000-panel limit: give --panel-size more than 0.03 m" in err
+    assert not (tmp_path / "h").exists()
 
 
 def test_the_panels_cover_the_wetted_box_and_the_lid_its_section():
