@@ -6,6 +6,7 @@ Per-boat names are relative to the boat's namespace; :func:`boat_topic` resolves
 from __future__ import annotations
 
 __all__ = [
+    "CARRIAGE_WRENCH",
     "CLOCK",
     "CLOCK_NODE",
     "CMD_RUDDER",
@@ -61,6 +62,8 @@ TWIST = "twist"
 #: wrench/<source> topics published by the dynamics node (``total`` includes gravity).
 WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "diffraction", "slamming",
                   "wind", "total")
+#: wrench/carriage: a towed boat's carriage force (the resistance), only for a boat on one.
+CARRIAGE_WRENCH = "carriage"
 
 WAVE_FIELD = "/ocean/wave_field"
 #: boat_msgs/Environment: the current and the wind (latched, republished on change).

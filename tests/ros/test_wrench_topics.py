@@ -60,3 +60,43 @@ def test_a_recording_holds_every_wrench_all_the_same(boatsim, tmp_path):
                         "slamming", "wind", "total")]
     msgs = read_bag(bag, topics)
     assert {t: len(msgs[t]) for t in topics} == {t: 11 for t in topics}  # 0 .. 1 s at 10 Hz
+
+
+def test_a_towed_boat_publishes_its_carriage_force(boatsim, tmp_path):
+    # alpha on a carriage at 1.5 m/s in calm water, bravo free: alpha's wrench/carriage (body
+    # frame, about the centre of mass) is the force the physics computes (pipeline.step's
+    # towing, the same scenario stepped here alone, to rounding), ahead and across nothing;
+    # a boat not towed has no such topic.
+    from boat_dynamics.physics import pipeline
+    from boat_dynamics.physics.carriage import body_wrench
+    from boat_dynamics.physics.model import BoatInputs
+    from boat_dynamics.physics.rigid_body import rotation_matrix
+    from boat_dynamics.physics.scenario import load_scenario
+    from boat_dynamics.physics.system import FleetInputs
+    from boat_dynamics.tools.bags import read_bag, read_bag_topics
+
+    path = tmp_path / "towed.yaml"
+    path.write_text(yaml.safe_dump({"ocean": {"components": []}, "boats": [
+        {"name": "alpha", "carriage": {"speed": 1.5}},
+        {"name": "bravo", "initial_pose": {"position": [20.0, 0.0, 0.0]}}]}))
+    bag = tmp_path / "bag"
+    sim = boatsim("run", str(path), "--fast", "--duration", "3", "--record", str(bag))
+    assert sim.wait(timeout=90) == 0, sim.output()
+    msgs = read_bag(bag, ["/alpha/wrench/carriage"])["/alpha/wrench/carriage"]
+    assert "/bravo/wrench/carriage" not in read_bag_topics(bag)
+    stamps = np.array([time_to_seconds(m.header.stamp) for _, m in msgs])
+    np.testing.assert_allclose(stamps, 0.1 * np.arange(1, 31), atol=1e-9)  # from the 1st step
+    assert msgs[-1][1].header.frame_id == "alpha/base_link"
+
+    scenario = load_scenario(path)
+    system, state = pipeline.start(scenario.boats[:1], scenario.sea)
+    inputs = FleetInputs.stack([BoatInputs()])
+    for _ in range(300):
+        step = pipeline.step(system, state, inputs, scenario.sea, 0.01)
+        state = step.state
+    want = body_wrench(system.params[0].carriage, rotation_matrix(state.orientation[0]),
+                       step.towing[0])
+    w = msgs[-1][1].wrench
+    got = np.array([w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z])
+    np.testing.assert_allclose(got, want, rtol=1e-6, atol=1e-6)
+    assert got[0] > 50.0 and abs(got[1]) < 1e-3 * got[0]  # N: the resistance, ahead

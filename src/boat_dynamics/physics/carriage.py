@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["TIME_CONSTANT", "Carriage", "towed_velocity"]
+__all__ = ["TIME_CONSTANT", "Carriage", "body_wrench", "towed_velocity"]
 
 #: s, the time constant with which the carriage brings back a lateral offset or a heading error.
 TIME_CONSTANT = 0.2
@@ -81,3 +81,22 @@ def towed_velocity(carriage: Carriage, mass_matrix: np.ndarray, rotation: np.nda
     inverse_rows = np.linalg.solve(mass_matrix, rows.T)  # M^-1 C^T, (6, 3)
     impulse = np.linalg.solve(rows @ inverse_rows, target - rows @ nu)
     return nu + inverse_rows @ impulse, impulse / dt
+
+
+def body_wrench(carriage: Carriage, rotation: np.ndarray, towing: np.ndarray) -> np.ndarray:
+    """(6,) the carriage's force (N) and moment (N m) on the boat, body frame.
+
+    Args:
+        carriage: the carriage (placed).
+        rotation: (3, 3) body to world.
+        towing: (3,) :func:`towed_velocity`'s force along and across the line (N) and yaw
+            moment (N m), world frame.
+
+    Returns:
+        Force then torque about the centre of mass, in the body frame: the form of the
+        ``wrench/<source>`` topics.
+    """
+    h = carriage.heading
+    force = towing[0] * np.array([math.cos(h), math.sin(h), 0.0]) + towing[1] * np.array(
+        [-math.sin(h), math.cos(h), 0.0])
+    return np.concatenate([rotation.T @ force, rotation.T @ np.array([0.0, 0.0, towing[2]])])

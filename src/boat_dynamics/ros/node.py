@@ -31,6 +31,7 @@ from std_msgs.msg import Float64, Float64MultiArray, String
 
 from boat_dynamics.physics import pipeline
 from boat_dynamics.physics.boat import BoatState, reference_pose
+from boat_dynamics.physics.carriage import body_wrench
 from boat_dynamics.physics.commands import check_command
 from boat_dynamics.physics.contact import Contact, contact, reference_points
 from boat_dynamics.physics.control import CONTROL_MODES
@@ -243,6 +244,7 @@ class DynamicsNode(Node):
         self._system = System.build([spec.params for spec in scenario.boats])
         self._state = FleetState.stack([spec.initial for spec in scenario.boats])
         self._forces: FleetForces | None = None  # acting during the last step
+        self._towing: np.ndarray | None = None  # (B, 3) the carriages' of the last step
         # The surface contact of self._state, once /diagnostics or the wrenches needed it:
         # the next step starts from that state and takes it (one query and clip, not two).
         self._contact: Contact | None = None
@@ -355,6 +357,10 @@ class DynamicsNode(Node):
             boat.pubs[source] = TappedPublisher(
                 self, WrenchStamped, names.wrench_topic(spec.name, source), DIAGNOSTICS_QOS,
                 self._tap, self._graph)
+        if spec.params.carriage is not None:
+            boat.pubs[names.CARRIAGE_WRENCH] = TappedPublisher(
+                self, WrenchStamped, names.wrench_topic(spec.name, names.CARRIAGE_WRENCH),
+                DIAGNOSTICS_QOS, self._tap, self._graph)
         if spec.commands is None:
             max_rudder = spec.params.rudder.max_angle
             thrust_topic = names.boat_topic(spec.name, names.CMD_THRUST)
@@ -479,7 +485,7 @@ class DynamicsNode(Node):
         self._sim_clock.steps = int(arrays["steps"])
         self._state = restore(self._state, arrays, "state.")
         self._before = None  # the next step sets it (a resumed node publishes after it)
-        self._contact, self._forces = None, None
+        self._contact, self._forces, self._towing = None, None, None
         self.commands_received = int(arrays["commands_received"])
         for i, b in enumerate(self.boats):
             for name in _BOAT_SCALARS:
@@ -761,6 +767,7 @@ class DynamicsNode(Node):
                                  self._contact_if_known(), self.environment)
             self._before = self._state
             self._state, self._forces, self._contact = done.state, done.forces, None
+            self._towing = done.towing
         self._sim_clock.steps += 1
 
     def publish_outputs(self) -> None:
@@ -830,6 +837,23 @@ class DynamicsNode(Node):
             wrench = getattr(forces, source)
             self._publish_wanted(source, "wrench", sec, nanosec,
                                  np.concatenate([wrench.force, wrench.torque], axis=1), now)
+        if self._towing is not None:
+            self._publish_carriages(sec, nanosec, now)
+
+    def _publish_carriages(self, sec: int, nanosec: int, now: float) -> None:
+        """wrench/carriage of every towed boat that wants it: the last step's carriage force."""
+        wanted = [b for b in self.boats
+                  if names.CARRIAGE_WRENCH in b.pubs and b.pubs[names.CARRIAGE_WRENCH].wanted(now)]
+        if not wanted:
+            return
+        values = np.zeros((len(self.boats), 6))
+        for boat in wanted:
+            i = boat.index
+            values[i] = body_wrench(self._system.params[i].carriage,
+                                    rotation_matrix(self._state.orientation[i]), self._towing[i])
+        packed = self._fleet_templates["wrench"].pack(sec, nanosec, values)
+        for boat in wanted:
+            boat.pubs[names.CARRIAGE_WRENCH].publish(packed[boat.index])
 
     def _publish_diagnostics(self, sec: int, nanosec: int) -> None:
         """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from ready_scenarios import SEED_MODEL
 
@@ -132,3 +132,23 @@ def test_a_bad_carriage_is_refused_with_its_key(boat, key, allowed):
     with pytest.raises(ScenarioError) as err:
         parse_scenario({"boats": [boat]})
     assert err.value.key == key and allowed in err.value.allowed
+
+
+@given(st.floats(-math.pi, math.pi), st.floats(-0.5, 0.5), st.floats(-0.5, 0.5),
+       st.floats(-math.pi, math.pi))
+@example(0.5, 0.0, 0.0, 0.5)
+@settings(max_examples=50, deadline=None)
+def test_the_carriage_wrench_in_the_body_frame_is_the_world_one_turned(heading, roll, pitch,
+                                                                        yaw):
+    # wrench/carriage: R^T of the world force along and across the line and of the yaw moment
+    from boat_dynamics.physics.carriage import body_wrench
+
+    carriage = Carriage(1.0, np.zeros(2), heading)
+    rotation = rotation_matrix(quat_from_euler(roll, pitch, yaw))
+    body = body_wrench(carriage, rotation, np.array([120.0, -8.0, 15.0]))
+    along = np.array([math.cos(heading), math.sin(heading), 0.0])
+    across = np.array([-math.sin(heading), math.cos(heading), 0.0])
+    np.testing.assert_allclose(rotation @ body[:3], 120.0 * along - 8.0 * across, atol=1e-9)
+    np.testing.assert_allclose(rotation @ body[3:], [0.0, 0.0, 15.0], atol=1e-9)
+    if roll == pitch == 0.0 and yaw == heading:  # on the line: along is surge
+        np.testing.assert_allclose(body, [120.0, -8.0, 0.0, 0.0, 0.0, 15.0], atol=1e-9)
