@@ -431,7 +431,7 @@ def _add_hydro(verbs) -> None:
 
 def _hydro(args: argparse.Namespace) -> int:
     from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
-    from boat_dynamics.tools.hydro import HydroError, coefficient_files
+    from boat_dynamics.tools.hydro import HydroError, coefficient_files, file_warnings
 
     path = Path(args.scenario or default_scenario_path())
     try:
@@ -448,6 +448,9 @@ def _hydro(args: argparse.Namespace) -> int:
         how = ("would be made" if f.seconds is None and f.plan is not None
                else "found" if f.seconds is None else f"made in {f.seconds:.0f} s")
         print(f"boat {f.boat or '(root)'}: {f.path} ({how}; key {f.key})")
+    for path in dict.fromkeys(f.path for f in files if f.path.exists()):
+        for line in file_warnings(path):
+            print(f"boatsim hydro: warning: {line}", file=sys.stderr, flush=True)
     if not args.dry_run:
         print("use them with `hydrodynamics: {coefficients: auto}` (or the path) in the boat")
     return 0

@@ -38,7 +38,7 @@ import numpy as np
 
 from boat_dynamics.physics.hydro import HydroCoefficients
 
-__all__ = ["MAX_ORDER", "RadiationMemory", "advance", "fit_memory", "memory_wrench",
+__all__ = ["MAX_ORDER", "POOR_FIT", "RadiationMemory", "advance", "fit_memory", "memory_wrench",
            "retardation_kernel"]
 
 #: The largest number of complex modes of a fitted memory; every boat's state holds this many.
@@ -173,6 +173,10 @@ def _fit_error(memory_response: np.ndarray, hydro: HydroCoefficients) -> float:
     b_norm = np.sqrt(np.outer(b_scale, b_scale)) + 1e-12
     a_norm = np.sqrt(np.outer(a_scale, a_scale)) + 1e-12
     return float(max((b_err / b_norm).max(), (a_err / a_norm).max()))
+
+
+#: A memory that misses its file by more than this (relative) is reported as a poor fit.
+POOR_FIT = 0.1
 
 
 def fit_memory(hydro: HydroCoefficients, tolerance: float = 0.03) -> RadiationMemory:

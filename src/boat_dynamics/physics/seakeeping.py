@@ -137,13 +137,14 @@ def regular_wave_response(params: BoatParams, wavelength: float, direction: floa
         speed: m/s ahead (0: moored).
 
     Raises:
-        ValueError: the boat would ride the wave (encounter period over ``max_time`` / 10).
+        ValueError: towed, the boat would ride the wave (encounter period over ``max_time`` /
+            10).
     """
     wave = WaveComponent(amplitude, wavelength, direction, 0.0, 0.0)
     sea = WaveField((wave,), gravity, depth)
     omega = float(angular_frequency(wave.wavenumber, gravity, depth))
     encounter = abs(encounter_frequency(omega, wave.wavenumber, speed, direction))
-    if encounter * max_time < 20 * math.pi:
+    if speed != 0.0 and encounter * max_time < 20 * math.pi:
         raise ValueError(f"speed {speed} m/s meets the wave of {wavelength:g} m from "
                          f"{math.degrees(direction):g} deg at {encounter:.3g} rad/s: fewer than "
                          f"10 encounters in {max_time:g} s")

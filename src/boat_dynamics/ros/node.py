@@ -38,6 +38,7 @@ from boat_dynamics.physics.control import CONTROL_MODES
 from boat_dynamics.physics.diagnostics import active_remedies, fleet_reports
 from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.propulsion import MAX_THRUSTERS
+from boat_dynamics.physics.radiation import POOR_FIT
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.scenario.specs import (
@@ -162,7 +163,7 @@ def _boat_lines(spec: BoatSpec) -> list[tuple[str, str]]:
     if spec.commands is not None:
         lines.append(("info", "scripted commands; ignoring command topics"))
     memory = spec.params.radiation_memory
-    if memory is not None and memory.error > _POOR_FIT:
+    if memory is not None and memory.error > POOR_FIT:
         lines.append(("warning",
                       f"its radiation memory fits the coefficients only within "
                       f"{100 * memory.error:.0f} % (sharp resonances of the hull's B(omega), "
@@ -883,7 +884,6 @@ _BOAT_PER_THRUSTER = ("thrusts", "angles", "thrust_t", "thrust_out")
 _COMMAND_TYPE = "std_msgs/msg/Float64"
 
 #: A radiation memory fitting its coefficients worse than this (relative) is warned about.
-_POOR_FIT = 0.1
 #: Up to this many boats, a node logs each boat's start-up lines; beyond, alike ones together.
 _LOGGED_BOATS = 20
 

@@ -20,14 +20,20 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics.hydro import coefficient_directories, find_coefficients
+from boat_dynamics.physics.hydro import (
+    coefficient_directories,
+    find_coefficients,
+    load_coefficients,
+    narrow_peaks,
+)
 from boat_dynamics.physics.model import BoatParams, coefficients_key, hull_mesh
+from boat_dynamics.physics.radiation import POOR_FIT, fit_memory
 from boat_dynamics.physics.rigid_body import mass_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.tuning import equilibrium_height
 from boat_dynamics.tools.bem import MAX_PANELS, SolvePlan, plan_hull
 
-__all__ = ["HullFile", "HydroError", "coefficient_files", "describe"]
+__all__ = ["HullFile", "HydroError", "coefficient_files", "describe", "file_warnings"]
 
 
 class HydroError(ValueError):
@@ -168,3 +174,34 @@ def _solve(spec: BoatSpec, key: str, depth: float, out_dir: Path, panels: dict, 
         raise AssertionError(f"the solver keyed the file {arrays['key']}, expected {key}")
     path = bem.write(path, arrays)
     return HullFile(spec.name, key, path, time.perf_counter() - t0, plan)
+
+
+def file_warnings(path: Path) -> list[str]:
+    """What a user should know of a coefficient file before running with it (empty: nothing).
+
+    Its narrow peaks (:func:`boat_dynamics.physics.hydro.narrow_peaks`: resonances such as a
+    catamaran's gap sloshing) and how well the radiation memory fits it
+    (:func:`boat_dynamics.physics.radiation.fit_memory`; over :data:`POOR_FIT` the boat's
+    radiation may be wrong).
+    """
+    try:
+        hydro = load_coefficients(path)
+    except ValueError as exc:  # HydroFileError: unreadable, an array missing or malformed
+        return [f"{path.name}: not checked: {exc}"]
+    peaks = narrow_peaks(hydro)
+    error = fit_memory(hydro).error
+    lines = []
+    if peaks:
+        where = {}
+        for p in peaks:
+            where.setdefault(round(p.omega, 2), []).append(f"{p.dof} {p.quantity}")
+        listed = "; ".join(f"{w:g} rad/s ({', '.join(what)})" for w, what in where.items())
+        lines.append(f"{path.name}: narrow peaks narrower than its frequency grid at {listed}: "
+                     f"sharp resonances, such as the sloshing between a catamaran's hulls, "
+                     f"whose heights on the grid mean nothing")
+    if error > POOR_FIT:
+        lines.append(f"{path.name}: its radiation memory fits it only within "
+                     f"{100 * error:.0f} % (accepted: {100 * POOR_FIT:.0f} %): a boat using it "
+                     f"may radiate wrongly; `hydrodynamics: {{radiation: resonance}}` or "
+                     f"`coefficients: none` avoid it")
+    return lines

@@ -12,6 +12,16 @@ ROOT = Path(__file__).resolve().parents[3]
 BOX = ROOT / "tests" / "data" / "hydro" / "box_4x2x1_d0.5.npz"
 
 
+def _box(tmp_path: Path, extra: str = "") -> Path:
+    """A scenario of the 4 x 2 x 1 m box with its Capytaine file (``extra``: more keys)."""
+    scenario = tmp_path / "box.yaml"
+    scenario.write_text(
+        "boats:\n  - {name: box, center_of_mass: [0, 0, -0.2],\n"
+        f"     buoyancy: {{pressure: froude_krylov}},{extra}\n"
+        f"     hydrodynamics: {{coefficients: {BOX}}}}}\n")
+    return scenario
+
+
 def _rows(out: str) -> list[list[str]]:
     lines = out.splitlines()
     start = next(i for i, line in enumerate(lines) if line.startswith("direction_deg"))
@@ -53,11 +63,7 @@ def test_a_boat_without_coefficients_says_so(tmp_path, capsys):
 
 
 def test_a_boat_with_coefficients_is_printed_beside_potential_flow(tmp_path, capsys):
-    scenario = tmp_path / "box.yaml"
-    scenario.write_text(
-        "boats:\n  - {name: box, center_of_mass: [0, 0, -0.2],\n"
-        "     buoyancy: {pressure: froude_krylov},\n"
-        f"     hydrodynamics: {{coefficients: {BOX}}}}}\n")
+    scenario = _box(tmp_path)
     assert main(["rao", str(scenario), "--boat", "box", "--wavelengths", "5",
                  "--directions-deg", "180", "90", "-o", str(tmp_path / "r.png")]) == 0
     rows = _rows(capsys.readouterr().out)
@@ -114,11 +120,7 @@ def test_towed_the_table_gives_the_encounter_frequency_and_a_ridden_wave_is_refu
         tmp_path, capsys):
     # 1 m/s ahead into a 2 L head sea of the 4 m box: omega_e = omega + k U; in a following sea
     # of one boat length the wave's speed is 2.50 m/s: towed at 2.5 m/s the boat rides it.
-    scenario = tmp_path / "box.yaml"
-    scenario.write_text(
-        "boats:\n  - {name: box, center_of_mass: [0, 0, -0.2],\n"
-        "     buoyancy: {pressure: froude_krylov}, carriage: {speed: 3},\n"
-        f"     hydrodynamics: {{coefficients: {BOX}}}}}\n")
+    scenario = _box(tmp_path, " carriage: {speed: 3},")
     assert main(["rao", str(scenario), "--speed", "2.5", "--wavelengths", "1",
                  "--directions-deg", "0", "-o", str(tmp_path / "r.png")]) == 2
     assert "--speed: 2.5 m/s rides the wave of 4 m from 0 deg" in capsys.readouterr().err
