@@ -53,9 +53,10 @@ RADIATION_MODELS: tuple[RadiationModel, ...] = ("cummins", "resonance")
 #: The water velocity the damping, hull drag and rudder take the boat's velocity against:
 #: ``hull``, the mean over the wetted hull (or submerged sample points) of linear theory's
 #: orbital velocity at each part's depth (:func:`ocean_sim.physics.waves.orbital_velocity`);
-#: ``reference_point``, the surface water particle's above the hull reference point (the
-#: default for now: in short waves that velocity, not the waves' excitation, drives the hull;
-#: ``hull`` becomes the default with the ``froude_krylov`` pressure, issue 10).
+#: ``reference_point``, the surface water particle's above the hull reference point (the seed
+#: notes' models' default: their hydrostatic hull has no wave excitation but that velocity;
+#: ``hull`` is the default of a hull under the waves' pressure, ``froude_krylov`` or
+#: ``linear``, since 2026-12-03).
 WaterVelocity = Literal["hull", "reference_point"]
 WATER_VELOCITIES: tuple[WaterVelocity, ...] = ("hull", "reference_point")
 

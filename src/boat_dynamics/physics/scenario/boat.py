@@ -28,6 +28,7 @@ from boat_dynamics.physics.model import (
     BoatState,
     Derivation,
     RadiationModel,
+    WaterVelocity,
     coefficients_key,
     initial_state,
 )
@@ -59,9 +60,12 @@ DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 #: The same with potential-flow coefficients, whose radiation damps the waves a hull makes: the
 #: viscous share potential flow lacks, flow separation at the bilges and skin friction, about
 #: 10 % of critical in roll for a hull with sharp bilges and no bilge keels (Ikeda, Himeno &
-#: Tanaka 1978; Journee & Massie 2001, "Offshore Hydromechanics", sec. 8.3), and taken alike in
-#: heave and pitch, where a sharp-cornered hull sheds vortices too.
-RADIATING_CRITICAL_RATIO = (0.1, 0.1, 0.1)
+#: Tanaka 1978; Journee & Massie 2001, "Offshore Hydromechanics", sec. 8.3); none in heave and
+#: pitch, where the radiation dominates (strip theory adds none; the quadratic heave drag of
+#: ``damping.quadratic``, C_d 1 on L B, takes a flat bottom's vortices). Journee's (1992) Wigley I
+#: towed at Fn 0.3 into a head sea of 1.25 L heaved 2.52 m/m; with 10 % of critical in heave and
+#: pitch it heaved 1.28, without 2.45 (tests/boat_dynamics/physics/test_towing_tank.py).
+RADIATING_CRITICAL_RATIO = (0.0, 0.1, 0.0)
 
 
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
@@ -138,7 +142,7 @@ def _boat_params(d: Mapping[str, Any], key: str, sim: SimulationSettings, base_d
         keel_rate=keel_block(mapping(d.get("keel"), f"{key}.keel"), f"{key}.keel"),
         stokes_drift=flag(d, "stokes_drift", key, False),
         control=control_block(d, key),
-        water_velocity=choice(dd, "water_velocity", dk, "reference_point", WATER_VELOCITIES),
+        water_velocity=_water_velocity(dd, dk, buoyancy),
         carriage=_carriage(d.get("carriage"), f"{key}.carriage"),
     )
     params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
@@ -148,6 +152,28 @@ def _boat_params(d: Mapping[str, Any], key: str, sim: SimulationSettings, base_d
         mooring_period=_mooring_period(d.get("mooring"), f"{key}.mooring",
                                        params.carriage is not None)))
     return params, tuple(thruster_names)
+
+
+def _water_velocity(dd: Mapping[str, Any], dk: str, buoyancy) -> WaterVelocity:
+    """``damping.water_velocity``: ``hull`` under the waves' pressure, else ``reference_point``.
+
+    The waves excite a ``froude_krylov`` or ``linear`` hull through their pressure, so its
+    damping must act on the velocity through the water over the hull; taken at one surface
+    point, the orbital velocity drives the hull a second time: Journee's Wigley III at zero
+    speed heaved 0.409 m/m in a head sea of one boat length against 0.29 measured and 0.259
+    with ``hull`` (2026-12-03, tests/boat_dynamics/physics/test_towing_tank.py).
+    """
+    excited = isinstance(buoyancy, MeshBuoyancy) and buoyancy.pressure != "hydrostatic"
+    default = "hull" if excited else "reference_point"
+    path = f"{dk}.water_velocity"
+    allowed = f"one of: {', '.join(WATER_VELOCITIES)}"
+    describe(path, default, allowed, default_doc="hull with the mesh model's froude_krylov or "
+             "linear pressure (the default model); reference_point with hydrostatic pressure "
+             "and sample points (the seed notes' models)")
+    value = dd.get("water_velocity", default)
+    if value not in WATER_VELOCITIES:
+        raise ScenarioError(path, value, f"must be {allowed}")
+    return value
 
 
 def _carriage(raw: Any, key: str) -> Carriage | None:
