@@ -26,8 +26,8 @@ from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.sensors import GnssReading, ImuReading, OdometryReading
 from boat_msgs_py.names import WORLD_FRAME
-from ocean_sim.physics.environment import GUST_MODELS, Environment, Wind
-from ocean_sim.physics.waves import WaveComponent, WaveField
+from ocean_sim.physics.environment import Environment, Wind
+from ocean_sim.physics.waves import MAX_COMPONENTS, InvalidSeaStateError, WaveComponent, WaveField
 
 __all__ = [
     "diagnostic_array",
@@ -135,7 +135,13 @@ def wave_field_to_msg(sea: WaveField, stamp: Time) -> WaveFieldMsg:
 
 
 def wave_field_from_msg(msg: WaveFieldMsg) -> WaveField:
-    """Core WaveField of a boat_msgs/WaveField (validated: may raise InvalidSeaStateError)."""
+    """Core WaveField of a boat_msgs/WaveField (validated: may raise InvalidSeaStateError).
+
+    At most :data:`~ocean_sim.physics.waves.MAX_COMPONENTS` components, counted first.
+    """
+    if len(msg.components) > MAX_COMPONENTS:
+        raise InvalidSeaStateError("components", f"{len(msg.components)} components",
+                                   f"at most {MAX_COMPONENTS}")
     return WaveField(
         tuple(WaveComponent(c.amplitude, c.wavelength, c.direction, c.steepness, c.phase)
               for c in msg.components),
@@ -216,18 +222,16 @@ def environment_to_msg(environment: Environment, stamp: Time) -> EnvironmentMsg:
 def environment_from_msg(msg: EnvironmentMsg) -> Environment:
     """The core's Environment (the gust components drawn again from the message's seed).
 
+    Within the bounds the scenario and the ocean node's parameters have
+    (:mod:`ocean_sim.physics.environment`), checked before anything is allocated: a message
+    from any node on the domain cannot ask for more.
+
     Raises:
-        ValueError: a negative or non-finite speed, or an unknown gust model.
+        InvalidEnvironmentError: a value out of its bounds, naming its key.
     """
-    values = (msg.current_speed, msg.current_direction, msg.wind_speed, msg.wind_direction)
-    if not all(np.isfinite(values)) or msg.current_speed < 0.0 or msg.wind_speed < 0.0:
-        raise ValueError(f"speeds must be finite and >= 0, directions finite: {values}")
-    if msg.gusts not in GUST_MODELS or msg.gust_components < 1:
-        raise ValueError(f"gusts {msg.gusts!r} with {msg.gust_components} components: one of "
-                         f"{GUST_MODELS} with at least 1")
-    return Environment(msg.current_speed, msg.current_direction,
-                       Wind.make(msg.wind_speed, msg.wind_direction, msg.gusts,
-                                 msg.gust_components, msg.seed))
+    wind = Wind.make(msg.wind_speed, msg.wind_direction, msg.gusts, msg.gust_components,
+                     msg.seed)
+    return Environment(msg.current_speed, msg.current_direction, wind)
 
 
 def noisy_odometry(stamp: Time, child: str, reading: OdometryReading) -> Odometry:

@@ -72,3 +72,29 @@ def test_diagnostic_array_keeps_level_name_message_and_values():
     assert alpha.hardware_id == "boatsim: alpha"
     assert [(v.key, v.value) for v in alpha.values] == [("draft_m", "0.51"), ("gm_m", "0.42")]
     assert arr.status[1].values == []
+
+
+def test_a_hostile_environment_message_is_refused_before_it_allocates():
+    # any node on the domain may publish /ocean/environment: 4e9 gust components (a uint32)
+    # once made the dynamics node allocate 29.8 GiB and die; the bounds are the parameters'
+    from boat_msgs.msg import Environment as EnvironmentMsg
+
+    from boat_msgs_py.convert import environment_from_msg
+    from ocean_sim.physics.environment import InvalidEnvironmentError
+
+    msg = EnvironmentMsg(wind_speed=10.0, gusts="norsok", gust_components=4_000_000_000)
+    with pytest.raises(InvalidEnvironmentError, match=r"wind\.gust_components: 4000000000"):
+        environment_from_msg(msg)
+    msg = EnvironmentMsg(current_speed=25.0, wind_speed=1.0, gusts="none", gust_components=50)
+    with pytest.raises(InvalidEnvironmentError, match=r"current.speed: 25.0 .* \[0, 20\] m/s"):
+        environment_from_msg(msg)
+    msg = EnvironmentMsg(wind_speed=10.0, gusts="norsok", gust_components=1000, seed=3)
+    assert environment_from_msg(msg).wind.frequencies.size == 1000
+
+
+def test_a_wave_field_message_of_too_many_components_is_refused_before_it_is_built():
+    one = WaveComponentMsg(amplitude=0.01, wavelength=50.0, direction=0.0, steepness=0.0,
+                           phase=0.0)
+    msg = WaveFieldMsg(gravity=9.81, depth=math.inf, components=[one] * 20_000)
+    with pytest.raises(InvalidSeaStateError, match=r"20000 components.*at most 1000"):
+        wave_field_from_msg(msg)

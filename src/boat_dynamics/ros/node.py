@@ -265,6 +265,9 @@ class DynamicsNode(Node):
         if not deferred:
             self.start()
         self.commands_received = 0
+        #: topic -> messages refused on it (/ocean/wave_field, /ocean/environment, lockstep):
+        #: the first is logged with its reason, all are counted on /diagnostics
+        self.refused: dict[str, int] = {}
         # (command topic, "ignored" | "clamped") -> (wall time of its last warning, problems
         # not warned about since)
         self._warned: dict[tuple[str, str], tuple[float, int]] = {}
@@ -551,12 +554,19 @@ class DynamicsNode(Node):
             elif p.name == "publish_tf":
                 self._publish_tf = bool(p.value)
 
+    def _refuse(self, topic: str, reason: object, keeping: str) -> None:
+        """Count a refused message; log the first one of ``topic`` with its reason."""
+        count = self.refused[topic] = self.refused.get(topic, 0) + 1
+        if count == 1:
+            self.get_logger().error(
+                f"ignoring invalid {topic}: {reason}; keeping {keeping} (later refusals on "
+                f"this topic are counted on /diagnostics as messages_refused, not logged)")
+
     def _on_wave_field(self, msg: WaveFieldMsg) -> None:
         try:
             sea = wave_field_from_msg(msg)
         except InvalidSeaStateError as exc:
-            self.get_logger().error(f"ignoring invalid {names.WAVE_FIELD}: {exc}; keeping the "
-                                    "previous sea state")
+            self._refuse(names.WAVE_FIELD, exc, "the previous sea state")
             return
         first = self.sea is None
         self.sea = sea
@@ -566,16 +576,24 @@ class DynamicsNode(Node):
     def _on_environment(self, msg: EnvironmentMsg) -> None:
         try:
             environment = environment_from_msg(msg)
-        except ValueError as exc:
-            self.get_logger().error(f"ignoring invalid {names.ENVIRONMENT}: {exc}; keeping the "
-                                    "previous current and wind")
+        except ValueError as exc:  # InvalidEnvironmentError, or a seed numpy refuses
+            self._refuse(names.ENVIRONMENT, exc, "the previous current and wind")
             return
         self.environment = environment
 
     def _on_lockstep(self, msg: Float64MultiArray) -> None:
-        if len(msg.data) >= 2:
-            self.granted_until = max(self.granted_until, float(msg.data[0]))
-            self.granted_commands = max(self.granted_commands, int(msg.data[1]))
+        """A replayer's grant [T s, n commands]: both finite and >= 0, or refused."""
+        if len(msg.data) < 2:
+            self._refuse(names.LOCKSTEP, f"{len(msg.data)} values", "the grant so far "
+                         "(a grant is [until_s, commands])")
+            return
+        until, commands = float(msg.data[0]), float(msg.data[1])
+        if not (math.isfinite(until) and math.isfinite(commands) and until >= 0.0
+                and 0.0 <= commands <= 2.0**53):
+            self._refuse(names.LOCKSTEP, [until, commands], "the grant so far (finite, >= 0)")
+            return
+        self.granted_until = max(self.granted_until, until)
+        self.granted_commands = max(self.granted_commands, int(commands))
 
     def announce_matches(self) -> None:
         """Lockstep, while holding: say which of the replayer's topics the boats have matched.
@@ -867,6 +885,7 @@ class DynamicsNode(Node):
         self._diag_pub.publish(diagnostic_array_cdr(sec, nanosec, [
             (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message,
              (*r.values, ("commands_received", str(boat.received)),
+              ("messages_refused", str(sum(self.refused.values()))),
               ("commands_ignored_not_finite", str(boat.ignored)),
               ("commands_clamped", str(boat.clamped))))
             for boat, r in zip(self.boats, reports, strict=True)]))

@@ -23,7 +23,8 @@ from typing import Literal
 
 import numpy as np
 
-__all__ = ["GUST_MODELS", "Environment", "GustModel", "Wind", "norsok_spectrum"]
+__all__ = ["GUST_MODELS", "MAX_CURRENT_SPEED", "MAX_GUST_COMPONENTS", "MAX_WIND_SPEED",
+           "Environment", "GustModel", "InvalidEnvironmentError", "Wind", "norsok_spectrum"]
 
 GustModel = Literal["none", "norsok"]
 #: The gust models of :class:`Wind`.
@@ -31,6 +32,30 @@ GUST_MODELS: tuple[GustModel, ...] = ("none", "norsok")
 
 #: The NORSOK spectrum's frequency range, Hz.
 NORSOK_RANGE = (1.0 / 600.0, 0.5)
+
+#: The bounds every reader of an environment applies, the scenario, the ocean node's parameters
+#: and the dynamics node's /ocean/environment subscriber alike: m/s, m/s, components.
+MAX_CURRENT_SPEED = 20.0
+MAX_WIND_SPEED = 100.0
+MAX_GUST_COMPONENTS = 1000
+
+
+class InvalidEnvironmentError(ValueError):
+    """An environment out of its bounds: which key, which value, what is allowed."""
+
+    def __init__(self, key: str, value: object, allowed: str) -> None:
+        self.key, self.value, self.allowed = key, value, allowed
+        super().__init__(f"{key}: {value!r} is not allowed: {allowed}")
+
+
+def _speed(key: str, value: object, high: float) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and 0.0 <= value <= high):
+        raise InvalidEnvironmentError(key, value, f"a number in [0, {high:g}] m/s")
+
+
+def _direction(key: str, value: object) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value)):
+        raise InvalidEnvironmentError(key, value, "a finite angle, rad")
 
 
 def norsok_spectrum(f: np.ndarray, mean_speed: float) -> np.ndarray:
@@ -70,7 +95,20 @@ class Wind:
     @classmethod
     def make(cls, speed: float, direction: float, gusts: GustModel = "none",
              components: int = 50, seed: int = 0) -> Wind:
-        """The wind, its gust components drawn from ``seed`` (``components`` of them)."""
+        """The wind, its gust components drawn from ``seed`` (``components`` of them).
+
+        Raises:
+            InvalidEnvironmentError: a speed, direction, gust model or component count out of
+                its bounds (checked before anything is drawn).
+        """
+        _speed("wind.speed", speed, MAX_WIND_SPEED)
+        _direction("wind.direction", direction)
+        if gusts not in GUST_MODELS:
+            raise InvalidEnvironmentError("wind.gusts", gusts, f"one of: {', '.join(GUST_MODELS)}")
+        if (isinstance(components, bool) or not isinstance(components, (int, np.integer))
+                or not 1 <= components <= MAX_GUST_COMPONENTS):
+            raise InvalidEnvironmentError("wind.gust_components", components,
+                                          f"an integer in [1, {MAX_GUST_COMPONENTS}]")
         if gusts == "none" or speed == 0.0:
             return cls(speed, direction, gusts, components, seed)
         edges = np.geomspace(*NORSOK_RANGE, components + 1)
@@ -105,6 +143,10 @@ class Environment:
     current_speed: float = 0.0
     current_direction: float = 0.0
     wind: Wind = field(default_factory=Wind)
+
+    def __post_init__(self) -> None:
+        _speed("current.speed", self.current_speed, MAX_CURRENT_SPEED)
+        _direction("current.direction", self.current_direction)
 
     @property
     def current(self) -> np.ndarray:

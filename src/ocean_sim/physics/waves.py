@@ -32,6 +32,7 @@ from ocean_sim.physics.constants import GRAVITY, TWO_PI
 __all__ = [
     "INVERSION_MAX_ITERATIONS",
     "INVERSION_TOLERANCE",
+    "MAX_COMPONENTS",
     "PRECISIONS",
     "InvalidSeaStateError",
     "Precision",
@@ -63,6 +64,11 @@ PRECISIONS: tuple[Precision, ...] = get_args(Precision)
 
 #: Upper bound on Newton iterations of the inversion (it typically needs 3-6).
 INVERSION_MAX_ITERATIONS = 60
+
+#: The most components a sea may have, whoever gives it: a scenario, the ocean node's
+#: parameters, an /ocean/wave_field message (each component costs every query point a
+#: sin/cos; a spectrum's default is 16, its maximum 1000).
+MAX_COMPONENTS = 1000
 
 
 class InvalidSeaStateError(ValueError):
@@ -222,6 +228,9 @@ def _validate(wf: WaveField) -> None:
         raise InvalidSeaStateError("gravity", wf.gravity, "must be a finite number > 0 (m/s^2)")
     if math.isnan(wf.depth) or wf.depth <= 0.0:
         raise InvalidSeaStateError("depth", wf.depth, "must be > 0 (m), or .inf for deep water")
+    if len(wf.components) > MAX_COMPONENTS:
+        raise InvalidSeaStateError("components", f"{len(wf.components)} components",
+                                   f"at most {MAX_COMPONENTS}")
     for i, c in enumerate(wf.components):
         name = f"components[{i}]"
         for attr in ("amplitude", "wavelength", "direction", "steepness", "phase"):

@@ -3,7 +3,8 @@
 Parameters of ``/ocean`` (changeable at run time, e.g. ``ros2 param set`` or the parameter
 service): ``current.speed`` (m/s, 0-20), ``current.direction_deg`` (-360..360, toward),
 ``wind.speed`` (m/s, 0-100, the one-hour mean at 10 m), ``wind.direction_deg``, ``wind.gusts``
-(``none`` or ``norsok``) and ``wind.gust_components`` (1-1000). A change is checked as a whole
+(``none`` or ``norsok``) and ``wind.gust_components`` (1-1000; the bounds of
+:mod:`ocean_sim.physics.environment`, every reader's). A change is checked as a whole
 and refused with the reason (the old environment kept), or applied and republished on
 ``/ocean/environment``, which the dynamics nodes follow.
 """
@@ -20,16 +21,23 @@ from boat_msgs_py.convert import environment_to_msg, seconds_to_time
 from boat_msgs_py.names import ENVIRONMENT
 from boat_msgs_py.qos import ENVIRONMENT_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
-from ocean_sim.physics.environment import GUST_MODELS, Environment, Wind
+from ocean_sim.physics.environment import (
+    GUST_MODELS,
+    MAX_CURRENT_SPEED,
+    MAX_GUST_COMPONENTS,
+    MAX_WIND_SPEED,
+    Environment,
+    Wind,
+)
 
 __all__ = ["ENVIRONMENT_PARAMETERS", "EnvironmentParameters"]
 
 #: name -> (description with unit, low, high) of the numeric parameters.
 ENVIRONMENT_PARAMETERS = {
-    "current.speed": ("Current speed, m/s (uniform).", 0.0, 20.0),
+    "current.speed": ("Current speed, m/s (uniform).", 0.0, MAX_CURRENT_SPEED),
     "current.direction_deg": ("Heading the current flows toward, deg, CCW from +x (east).",
                               -360.0, 360.0),
-    "wind.speed": ("Mean wind speed at 10 m, m/s (one-hour mean).", 0.0, 100.0),
+    "wind.speed": ("Mean wind speed at 10 m, m/s (one-hour mean).", 0.0, MAX_WIND_SPEED),
     "wind.direction_deg": ("Heading the wind blows toward, deg, CCW from +x (east).",
                            -360.0, 360.0),
 }
@@ -64,8 +72,8 @@ class EnvironmentParameters:
         node.declare_parameter("wind.gust_components", environment.wind.components,
                                ParameterDescriptor(
                                    description="Harmonic components of the gusts.",
-                                   integer_range=[IntegerRange(from_value=1, to_value=1000,
-                                                               step=1)]))
+                                   integer_range=[IntegerRange(
+                                       from_value=1, to_value=MAX_GUST_COMPONENTS, step=1)]))
         self._pub = TappedPublisher(node, EnvironmentMsg, ENVIRONMENT, ENVIRONMENT_QOS, tap)
         if epoch is not None:
             self.publish()

@@ -58,6 +58,7 @@ class SurfaceServer(Node):
         self.create_subscription(WaveFieldMsg, WAVE_FIELD, self._on_field, WAVE_FIELD_QOS)
         self.create_subscription(ParameterEvent, PARAMETER_EVENTS, self._on_parameters,
                                  PARAMETER_EVENTS_QOS)
+        self.refused = 0  # invalid /ocean/wave_field messages
         self._service = None  # offered once the first sea state is in: a client that found
         # the service finds it ready
 
@@ -69,7 +70,10 @@ class SurfaceServer(Node):
         try:
             self._sea = wave_field_from_msg(msg)
         except InvalidSeaStateError as exc:
-            self.get_logger().error(f"ignoring invalid {WAVE_FIELD}: {exc}")
+            self.refused += 1  # the first logged with its reason, the rest counted
+            if self.refused == 1:
+                self.get_logger().error(f"ignoring invalid {WAVE_FIELD}: {exc} (later "
+                                        "refusals are counted, not logged)")
             return
         self._epoch = time_to_seconds(msg.header.stamp)
         self._offer()

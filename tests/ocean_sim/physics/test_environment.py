@@ -5,7 +5,16 @@ import math
 import numpy as np
 import pytest
 
-from ocean_sim.physics.environment import NORSOK_RANGE, Environment, Wind, norsok_spectrum
+from ocean_sim.physics.environment import (
+    MAX_CURRENT_SPEED,
+    MAX_GUST_COMPONENTS,
+    MAX_WIND_SPEED,
+    NORSOK_RANGE,
+    Environment,
+    InvalidEnvironmentError,
+    Wind,
+    norsok_spectrum,
+)
 
 
 def test_current_and_mean_wind_point_where_they_go():
@@ -41,3 +50,29 @@ def test_gusts_have_the_spectrums_variance_and_the_mean_speed():
     assert Wind.make(12.0, 0.3, "norsok", components=200, seed=5).speed_at(123.4) != (
         wind.speed_at(123.4))
     assert Wind.make(12.0, 0.3).speed_at(123.4) == 12.0  # no gusts
+
+
+@pytest.mark.parametrize(("make", "key"), [
+    (lambda: Wind.make(10.0, 0.0, "norsok", 4_000_000_000), "wind.gust_components"),
+    (lambda: Wind.make(10.0, 0.0, "norsok", 0), "wind.gust_components"),
+    (lambda: Wind.make(10.0, 0.0, "norsok", True), "wind.gust_components"),
+    (lambda: Wind.make(10.0, 0.0, "harris"), "wind.gusts"),
+    (lambda: Wind.make(101.0, 0.0), "wind.speed"),
+    (lambda: Wind.make(math.nan, 0.0), "wind.speed"),
+    (lambda: Wind.make(5.0, math.inf), "wind.direction"),
+    (lambda: Environment(20.5, 0.0), "current.speed"),
+    (lambda: Environment(-1.0, 0.0), "current.speed"),
+    (lambda: Environment(1.0, math.nan), "current.direction"),
+])
+def test_an_environment_out_of_its_bounds_is_refused_before_anything_is_drawn(make, key):
+    # the bounds of the scenario and of the ocean node's parameters hold for every reader; a
+    # /ocean/environment of 4e9 gust components once allocated 29.8 GiB and killed the node
+    with pytest.raises(InvalidEnvironmentError) as err:
+        make()
+    assert err.value.key == key
+
+
+def test_the_bounds_themselves_are_allowed():
+    wind = Wind.make(MAX_WIND_SPEED, 0.0, "norsok", MAX_GUST_COMPONENTS)
+    assert wind.frequencies.size == MAX_GUST_COMPONENTS
+    assert Environment(MAX_CURRENT_SPEED, 0.0, wind).current_speed == 20.0

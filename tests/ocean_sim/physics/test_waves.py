@@ -324,3 +324,15 @@ def test_pressure_head_decays_with_depth_as_linear_theory(depth):
         # stretching moves the decay by eta = O(a): a relative error of O(k a)
         np.testing.assert_allclose(head + z, a * np.cos(theta) * decay, rtol=0, atol=a * k * a)
         assert np.all(np.isfinite(head))
+
+
+def test_a_sea_of_more_than_max_components_is_refused():
+    # whoever gives it (scenario, parameters, an /ocean/wave_field from any node): 20,000
+    # components were accepted and slowed every query 20-fold
+    from ocean_sim.physics.waves import MAX_COMPONENTS
+
+    one = WaveComponent(0.01, 50.0, 0.0, 0.0, 0.0)
+    assert len(WaveField((one,) * MAX_COMPONENTS).components) == MAX_COMPONENTS
+    with pytest.raises(InvalidSeaStateError, match="at most 1000") as err:
+        WaveField((one,) * (MAX_COMPONENTS + 1))
+    assert err.value.key == "components"

@@ -21,7 +21,14 @@ from boat_dynamics.physics.scenario.specs import (
     SimulationSettings,
 )
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
-from ocean_sim.physics.environment import GUST_MODELS, Environment, Wind
+from ocean_sim.physics.environment import (
+    GUST_MODELS,
+    MAX_CURRENT_SPEED,
+    MAX_GUST_COMPONENTS,
+    MAX_WIND_SPEED,
+    Environment,
+    Wind,
+)
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.physics.waves import (
     PRECISIONS,
@@ -83,12 +90,12 @@ def environment_block(raw: Any, seed: int) -> Environment:
     c, w = mapping(d.get("current"), ck), mapping(d.get("wind"), wk)
     only(c, ck, ("speed", "direction_deg"))
     only(w, wk, ("speed", "direction_deg", "gusts", "components"))
-    components = integer(w, "components", wk, 50, 1, 1000)
-    wind = Wind.make(number(w, "speed", wk, 0.0, 0.0, 100.0, unit="m/s"),
+    components = integer(w, "components", wk, 50, 1, MAX_GUST_COMPONENTS)
+    wind = Wind.make(number(w, "speed", wk, 0.0, 0.0, MAX_WIND_SPEED, unit="m/s"),
                      math.radians(number(w, "direction_deg", wk, 0.0, -360.0, 360.0,
                                          unit="deg")),
                      choice(w, "gusts", wk, "none", GUST_MODELS), components, seed)
-    return Environment(number(c, "speed", ck, 0.0, 0.0, 20.0, unit="m/s"),
+    return Environment(number(c, "speed", ck, 0.0, 0.0, MAX_CURRENT_SPEED, unit="m/s"),
                        math.radians(number(c, "direction_deg", ck, 0.0, -360.0, 360.0,
                                            unit="deg")), wind)
 
