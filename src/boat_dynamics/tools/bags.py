@@ -237,12 +237,16 @@ class FieldDifference:
 class TopicComparison:
     """One topic's comparison.
 
+    Messages are aligned on their stamps; messages of one stamp in order (the k-th of a
+    stamp in A with the k-th of that stamp in B), so a repeated stamp is a message too.
+
     Attributes:
         topic: the topic.
-        matched: messages aligned (same stamp in both bags).
-        only_a: stamps present in A only.
-        only_b: stamps present in B only.
+        matched: messages aligned (same stamp, same place among that stamp's, in both bags).
+        only_a: messages of A with no counterpart in B.
+        only_b: messages of B with no counterpart in A.
         fields: per-field differences, the farthest outside its tolerance first.
+        repeated: messages whose stamp an earlier message of the topic had, in A and in B.
     """
 
     topic: str
@@ -250,6 +254,7 @@ class TopicComparison:
     only_a: int
     only_b: int
     fields: list[FieldDifference] = field(default_factory=list)
+    repeated: tuple[int, int] = (0, 0)
 
     @property
     def ok(self) -> bool:
@@ -280,7 +285,9 @@ class Comparison:
             state = "ok" if t.ok else "DIFFERENT"
             lines.append(f"{t.topic}: {state}: {t.matched} messages matched"
                          + (f", {t.only_a} only in A" if t.only_a else "")
-                         + (f", {t.only_b} only in B" if t.only_b else ""))
+                         + (f", {t.only_b} only in B" if t.only_b else "")
+                         + (f" (repeated stamps: {t.repeated[0]} in A, {t.repeated[1]} in B)"
+                            if any(t.repeated) else ""))
             moved = [f for f in t.fields if f.max_abs > 0.0]
             if not moved:
                 lines.append(f"  all {len(t.fields)} fields equal")
@@ -345,19 +352,12 @@ def compare_bags(a: str | Path, b: str | Path, topics: Iterable[str] | None = No
     bag_b = read_bag(b, bag_a.keys())
     results = []
     for topic, msgs_a in bag_a.items():
-        by_stamp_b = {}
-        for stamp, msg in bag_b[topic]:
-            by_stamp_b.setdefault(stamp, msg)
-        stamps_a = {stamp for stamp, _ in msgs_a}
-        only_b = len(set(by_stamp_b) - stamps_a)
+        keyed_a, keyed_b = _keyed(msgs_a), _keyed(bag_b[topic])
+        only_b = len(keyed_b.keys() - keyed_a.keys())
         worst: dict[str, FieldDifference] = {}
         matched = only_a = 0
-        seen = set()
-        for stamp, msg in msgs_a:
-            if stamp in seen:
-                continue
-            seen.add(stamp)
-            other = by_stamp_b.get(stamp)
+        for (stamp, _), msg in keyed_a.items():
+            other = keyed_b.get((stamp, _))
             if other is None:
                 only_a += 1
                 continue
@@ -373,5 +373,17 @@ def compare_bags(a: str | Path, b: str | Path, topics: Iterable[str] | None = No
                                                  _tolerance(key, topic, tolerances), index,
                                                  texts)
         fields = sorted(worst.values(), key=lambda f: (f.ok, -f.excess, -f.max_abs, f.field))
-        results.append(TopicComparison(topic, matched, only_a, only_b, fields))
+        repeated = (sum(1 for _, k in keyed_a if k), sum(1 for _, k in keyed_b if k))
+        results.append(TopicComparison(topic, matched, only_a, only_b, fields, repeated))
     return Comparison(results)
+
+
+def _keyed(messages: list[tuple[int, object]]) -> dict[tuple[int, int], object]:
+    """{(stamp ns, k): the k-th message of that stamp}, in bag order."""
+    seen: dict[int, int] = {}
+    out = {}
+    for stamp, msg in messages:
+        k = seen.get(stamp, 0)
+        seen[stamp] = k + 1
+        out[(stamp, k)] = msg
+    return out

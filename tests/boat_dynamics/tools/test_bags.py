@@ -14,12 +14,12 @@ from boat_dynamics.cli import main
 from boat_dynamics.tools.bags import compare_bags, flatten
 
 
-def _bag(path, topic, msgtype, msgs):
+def _bag(path, topic, msgtype, msgs, seconds=None):
     store = get_typestore(Stores.ROS2_JAZZY)
     with Writer(path, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
         conn = writer.add_connection(topic, msgtype, typestore=store)
         for i, msg in enumerate(msgs):
-            msg.header.stamp.sec = i
+            msg.header.stamp.sec = i if seconds is None else seconds[i]
             writer.write(conn, i * 1_000_000_000, serialize_message(msg))
     return path
 
@@ -111,3 +111,20 @@ def test_max_fields_must_be_a_whole_number_at_least_zero(tmp_path, capsys):
         main(["compare", str(a), str(b), "--max-fields", "-1"])
     assert exit_.value.code == 2
     assert "'-1': must be at least 0" in capsys.readouterr().err
+
+
+def test_a_message_with_a_repeated_stamp_is_a_message_too(tmp_path, capsys):
+    # B has an extra /odom with the stamp of the one before and x + 100 m: compare said "ok,
+    # all 16 fields equal" (exit 0); messages of one stamp are now matched in order
+    a = _bag(tmp_path / "a", "/odom", "nav_msgs/msg/Odometry", [_odom() for _ in range(3)])
+    b = _bag(tmp_path / "b", "/odom", "nav_msgs/msg/Odometry",
+             [_odom(), _odom(), _odom(x=100.0), _odom()], seconds=[0, 1, 1, 2])
+    result = compare_bags(a, b)
+    (topic,) = result.topics
+    assert not result.ok
+    assert (topic.matched, topic.only_a, topic.only_b, topic.repeated) == (3, 0, 1, (0, 1))
+    assert main(["compare", str(a), str(b)]) == 1
+    assert ("/odom: DIFFERENT: 3 messages matched, 1 only in B (repeated stamps: 0 in A, 1 "
+            "in B)") in capsys.readouterr().out
+    # the same repeats on both sides, in the same order, compare equal
+    assert compare_bags(b, b).ok
