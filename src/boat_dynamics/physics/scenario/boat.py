@@ -41,10 +41,12 @@ from boat_dynamics.physics.scenario.models import (
     rudder_block,
 )
 from boat_dynamics.physics.scenario.read import (
+    ROS_NAME_RULE,
     choice,
     describe,
     flag,
     integer,
+    is_ros_name,
     mapping,
     number,
     only,
@@ -257,16 +259,13 @@ def _windage(d: Mapping[str, Any], key: str) -> Windage:
 
 def _boat_name(d: Mapping[str, Any], key: str, lone: bool) -> str:
     """``name``: a ROS name, required unless the boat is alone ("" = root namespace)."""
-    describe(f"{key}.name", None, "a ROS name: letters, digits and _, not starting with a "
-             "digit; unique", default_doc='"" (the root namespace) for a lone boat, else '
-             "required")
+    describe(f"{key}.name", None, f"{ROS_NAME_RULE}; unique",
+             default_doc='"" (the root namespace) for a lone boat, else required')
     name = d.get("name", "" if lone else None)
     if name is None:
         raise ScenarioError(f"{key}.name", None, "every boat of a multi-boat scenario needs a name")
-    if not isinstance(name, str) or (name and not name.replace("_", "a").isalnum()) \
-            or (name and name[0].isdigit()):
-        raise ScenarioError(f"{key}.name", name,
-                            "must be a ROS name: letters, digits and _, not starting with a digit")
+    if name != "" and not is_ros_name(name):
+        raise ScenarioError(f"{key}.name", name, f"must be {ROS_NAME_RULE}")
     return name
 
 

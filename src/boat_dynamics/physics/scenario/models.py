@@ -17,10 +17,12 @@ from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
 from boat_dynamics.physics.propulsion import MAX_THRUSTERS, Propulsion
 from boat_dynamics.physics.rudder import DEFAULT_LIFT_COEFFICIENT, RUDDER_MODELS, Rudder
 from boat_dynamics.physics.scenario.read import (
+    ROS_NAME_RULE,
     choice,
     describe,
     flag,
     integer,
+    is_ros_name,
     mapping,
     number,
     only,
@@ -101,13 +103,11 @@ def propulsion_block(raw: Any, pk: str, hull: BoxHull
     for i, item in enumerate(raw):
         k = f"{pk}[{i}]"
         d = mapping(item, k)
-        describe(f"{k}.name", None, "a ROS name (a letter, then letters, digits or _); "
-                 "unique on the boat", default_doc="required")
+        describe(f"{k}.name", None, f"{ROS_NAME_RULE}; unique on the boat",
+                 default_doc="required")
         name = d.get("name")
-        if (not isinstance(name, str) or not name or not name[0].isalpha()
-                or not name.replace("_", "a").isalnum()):
-            raise ScenarioError(f"{k}.name", name, "is required: a ROS name (a letter, then "
-                                                   "letters, digits or underscores)")
+        if not is_ros_name(name):
+            raise ScenarioError(f"{k}.name", name, f"is required: {ROS_NAME_RULE}")
         if name in names:
             raise ScenarioError(f"{k}.name", name, "must be unique among the boat's thrusters")
         names.append(name)

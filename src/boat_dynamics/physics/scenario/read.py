@@ -9,6 +9,7 @@ Outside :func:`keys_read` nothing is kept.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -19,8 +20,22 @@ import numpy as np
 
 from boat_dynamics.physics.scenario.specs import ScenarioError
 
-__all__ = ["BlockDoc", "KeyDoc", "choice", "describe", "flag", "integer", "keys_read",
-           "mapping", "number", "only", "vector"]
+__all__ = ["MAX_NAME_LENGTH", "ROS_NAME_RULE", "BlockDoc", "KeyDoc", "choice", "describe",
+           "flag", "integer", "is_ros_name", "keys_read", "mapping", "number", "only", "vector"]
+
+#: The longest boat, thruster or sensor name: each goes into topic, frame and node names,
+#: which ROS 2 caps at 255 characters (rmw's validation).
+MAX_NAME_LENGTH = 64
+#: What a boat, thruster or sensor name must be (ROS 2's name-token rules, ASCII).
+ROS_NAME_RULE = (f"a ROS name: an ASCII letter, then ASCII letters, digits or _, at most "
+                 f"{MAX_NAME_LENGTH} characters")
+_ROS_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
+
+
+def is_ros_name(value: object) -> bool:
+    """Whether ``value`` is a name :data:`ROS_NAME_RULE` allows (rclpy refused the others)."""
+    return (isinstance(value, str) and len(value) <= MAX_NAME_LENGTH
+            and _ROS_NAME.fullmatch(value) is not None)
 
 
 @dataclass(frozen=True)
@@ -131,11 +146,16 @@ def number(
 
 
 def vector(d: Mapping[str, Any], name: str, key: str, n: int, default: list[float],
-            low: float = -math.inf, default_doc: str | None = None, unit: str = "") -> np.ndarray:
-    """``d[name]`` as an (n,) float array of finite numbers >= ``low``, or ScenarioError."""
+            low: float = -math.inf, default_doc: str | None = None, unit: str = "",
+            bound: float = math.inf) -> np.ndarray:
+    """``d[name]`` as an (n,) float array of finite numbers >= ``low``, or ScenarioError.
+
+    ``bound``: every entry within +-bound too.
+    """
     path = f"{key}.{name}"
     v = d.get(name, default)
     describe(path, default, f"{n} numbers" + (f" >= {low:g}" if low > -math.inf else "")
+             + (f" within +-{bound:g}" if bound < math.inf else "")
              + (f", {unit}" if unit else ""), default_doc)
     if (not isinstance(v, (list, tuple)) or len(v) != n
             or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v)):
@@ -145,6 +165,8 @@ def vector(d: Mapping[str, Any], name: str, key: str, n: int, default: list[floa
         raise ScenarioError(path, v, f"must be a list of {n} finite numbers")
     if np.any(arr < low):
         raise ScenarioError(path, v, f"every entry must be >= {low:g}")
+    if np.any(np.abs(arr) > bound):
+        raise ScenarioError(path, v, f"every entry must be within +-{bound:g}")
     return arr
 
 

@@ -8,7 +8,15 @@ from typing import Any
 
 import numpy as np
 
-from boat_dynamics.physics.scenario.read import describe, mapping, number, only, vector
+from boat_dynamics.physics.scenario.read import (
+    ROS_NAME_RULE,
+    describe,
+    is_ros_name,
+    mapping,
+    number,
+    only,
+    vector,
+)
 from boat_dynamics.physics.scenario.specs import ScenarioError
 from boat_dynamics.physics.sensors import (
     Datum,
@@ -22,7 +30,7 @@ from boat_dynamics.physics.sensors import (
 )
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
 
-__all__ = ["SENSOR_TYPES", "datum_block", "sensors_block"]
+__all__ = ["MAX_MOUNT", "SENSOR_TYPES", "datum_block", "sensors_block"]
 
 #: The ``type`` of a sensor.
 SENSOR_TYPES = ("imu", "gnss", "odometry")
@@ -40,6 +48,11 @@ def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
                                       math.degrees(default.longitude), -180.0, 180.0,
                                       unit="deg")),
         altitude=number(d, "altitude", key, 0.0, -1000.0, 10000.0, unit="m"))
+
+
+#: m, the farthest a sensor may be mounted from the hull reference point, per axis (a GNSS
+#: mounted 1e300 m away gave NaN fixes).
+MAX_MOUNT = 1000.0
 
 
 def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, ...]:
@@ -61,16 +74,14 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
         only(d, k, ("type", "name", "rate_hz", "position", "noise"))
         describe(f"{k}.type", None, f"one of: {', '.join(SENSOR_TYPES)}",
                  default_doc="required")
-        describe(f"{k}.name", None, "a ROS name (a letter, then letters, digits or _); unique "
-                 "on the boat: its topics and frame", default_doc="its type")
+        describe(f"{k}.name", None, f"{ROS_NAME_RULE}; unique on the boat: its topics and "
+                 "frame", default_doc="its type")
         kind = d.get("type")
         if kind not in SENSOR_TYPES:
             raise ScenarioError(f"{k}.type", kind, f"must be one of: {', '.join(SENSOR_TYPES)}")
         name = d.get("name", kind)
-        if (not isinstance(name, str) or not name or not name[0].isalpha()
-                or not name.replace("_", "a").isalnum()):
-            raise ScenarioError(f"{k}.name", name, "must be a ROS name: a letter, then letters, "
-                                                   "digits or underscores")
+        if not is_ros_name(name):
+            raise ScenarioError(f"{k}.name", name, f"must be {ROS_NAME_RULE}")
         if name in {s.name for s in out}:
             raise ScenarioError(f"{k}.name", name, "must be unique among the boat's sensors")
         rate = number(d, "rate_hz", k, {"imu": 100.0, "gnss": 5.0, "odometry": 50.0}[kind], 0.0,
@@ -78,7 +89,7 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
                       default_doc="imu 100, gnss 5, odometry 50",
                       range_doc="(0, simulation.rate_hz] Hz")
         position = vector(d, "position", k, 3, [0.0, 0.0, 0.0], unit="m, body frame, from the "
-                          "hull reference point (not for an odometry)")
+                          "hull reference point (not for an odometry)", bound=MAX_MOUNT)
         describe(f"{k}.noise", None, "imu: gyroscope {...}, accelerometer {...}, "
                  "orientation_sigma_deg; gnss: horizontal_sigma, vertical_sigma, bias_sigma, "
                  "bias_correlation_time, velocity_sigma; odometry: position_sigma, "
