@@ -40,6 +40,14 @@ ESTIMATE_REFERENCE = SHIPPED_COEFFICIENTS / "box_4x2x1_d0.500_2b2dd4941ae3d992.n
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
+#: The highest frequency a coefficient file may hold, rad/s: its radiation memory is sampled at
+#: pi / (8 omega_max), so 1e7 rad/s asked 11.4 GiB (a 0.3 m model needs about 50).
+MAX_OMEGA = 200.0
+#: The most a coefficient file may hold uncompressed, bytes: a 2 MB .npz zip bomb once held
+#: 2.4 GB for a minute (the shipped files hold under 1 MB).
+MAX_FILE_BYTES = 256 * 2**20
+
+
 class HydroFileError(ValueError):
     """A coefficient file that cannot be used: unreadable, or an array missing or malformed."""
 
@@ -170,9 +178,12 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
     """
     p = Path(path)
     try:
+        _check_sizes(p)
         with np.load(p, allow_pickle=False) as data:
             arrays = {name: np.asarray(data[name]) for name in _SHAPES if name in data.files}
-    except (OSError, ValueError, zipfile.BadZipFile) as exc:
+    except (OSError, ValueError, zipfile.BadZipFile, EOFError, MemoryError) as exc:
+        if isinstance(exc, HydroFileError):
+            raise
         raise HydroFileError(f"{p}: not a readable .npz coefficient file ({exc})") from exc
     sizes: dict[str, int] = {}
     for name, shape in _SHAPES.items():
@@ -192,7 +203,58 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
             raise HydroFileError(f"{p}: {name} has non-finite values")
     if sizes["W"] < 2 or np.any(np.diff(arrays["omega"]) <= 0.0) or arrays["omega"][0] <= 0.0:
         raise HydroFileError(f"{p}: omega must hold at least two increasing values > 0")
+    _check_physics(p, arrays)
     return HydroCoefficients(**{name: arrays[name] for name in _SHAPES}, source=str(p))
+
+
+def _check_sizes(p: Path) -> None:
+    """HydroFileError for a file that would hold more than :data:`MAX_FILE_BYTES` once read.
+
+    The zip's declared sizes, and each array's header (shape, dtype) against its member's
+    size, are read before anything is allocated.
+    """
+    with zipfile.ZipFile(p) as z:
+        members = z.infolist()
+        total = sum(m.file_size for m in members)
+        if total > MAX_FILE_BYTES:
+            raise HydroFileError(f"{p}: its arrays hold {total} bytes uncompressed; a "
+                                 f"coefficient file may hold at most {MAX_FILE_BYTES}")
+        for m in members:
+            with z.open(m) as f:
+                version = np.lib.format.read_magic(f)
+                read_header = (np.lib.format.read_array_header_1_0 if version == (1, 0)
+                               else np.lib.format.read_array_header_2_0)
+                shape, _, dtype = read_header(f)
+            declared = int(np.prod(shape, dtype=float)) * dtype.itemsize
+            if declared > m.file_size:
+                raise HydroFileError(f"{p}: array {m.filename} declares {shape} of {dtype} "
+                                     f"({declared} bytes) in {m.file_size} bytes")
+
+
+def _check_physics(p: Path, arrays: dict[str, np.ndarray]) -> None:
+    """HydroFileError for coefficients the physics cannot use (NaN states followed).
+
+    At least two wave directions, increasing within [0, 2 pi); frequencies up to
+    :data:`MAX_OMEGA`; an infinite-frequency added mass that is symmetric (within 5 % of its
+    largest entry: a solver's discretization leaves 0.04-0.35 % in the shipped files) and
+    positive semi-definite; some radiation damping.
+    """
+    beta = arrays["directions"]
+    if beta.size < 2 or np.any(np.diff(beta) <= 0.0) or beta[0] < 0.0 or beta[-1] >= 2 * np.pi:
+        raise HydroFileError(f"{p}: directions {np.degrees(beta).round(3).tolist()} deg: at "
+                             "least two, increasing, within [0, 360) deg")
+    if arrays["omega"][-1] > MAX_OMEGA:
+        raise HydroFileError(f"{p}: omega reaches {arrays['omega'][-1]:g} rad/s; at most "
+                             f"{MAX_OMEGA:g}")
+    a_inf = arrays["added_mass_inf"]
+    scale = max(float(np.abs(a_inf).max()), 1e-300)
+    lowest = float(np.linalg.eigvalsh(0.5 * (a_inf + a_inf.T)).min())
+    if np.abs(a_inf - a_inf.T).max() > 0.05 * scale or lowest < -1e-6 * scale:
+        raise HydroFileError(f"{p}: added_mass_inf must be symmetric positive semi-definite "
+                             f"(its lowest eigenvalue is {lowest:.4g})")
+    if not np.any(np.diagonal(arrays["radiation_damping"], axis1=1, axis2=2) > 0.0):
+        raise HydroFileError(f"{p}: radiation_damping is zero at every frequency: a hull "
+                             "radiates; use `coefficients: none` for a hull without them")
 
 
 def _canonical(name: str, value, dtype: str) -> bytes:

@@ -41,6 +41,52 @@ def test_a_malformed_coefficient_file_is_refused_naming_the_array(tmp_path, chan
     assert fragment in str(err.value)
 
 
+def _box(name):
+    with np.load(BOX) as data:
+        return data[name]
+
+
+@pytest.mark.parametrize(("changes", "fragment"), [
+    # each once loaded, then gave NaN odometry while the run exited 0, or allocated GiBs
+    ({"directions": np.array([math.pi]), "froude_krylov": _box("froude_krylov")[:, 4:],
+      "diffraction": _box("diffraction")[:, 4:]}, "at least two, increasing"),
+    ({"added_mass_inf": -np.eye(6) * 1000.0}, "added_mass_inf must be symmetric positive "
+                                              "semi-definite (its lowest eigenvalue is -1000)"),
+    ({"omega": _box("omega") * 1e6}, "omega reaches 1.2e+07 rad/s; at most 200"),
+    ({"radiation_damping": np.zeros_like(_box("radiation_damping"))},
+     "radiation_damping is zero at every frequency"),
+])
+def test_coefficients_the_physics_cannot_use_are_refused(tmp_path, changes, fragment):
+    with pytest.raises(HydroFileError) as err:
+        load_coefficients(_write(tmp_path / "bad.npz", **changes))
+    assert fragment in str(err.value)
+
+
+def test_a_file_that_would_allocate_more_than_it_holds_is_refused_before_reading(tmp_path):
+    import zipfile
+
+    # a zip bomb: 300 MB of zeros compress to under 1 MB
+    bomb = tmp_path / "bomb.npz"
+    with zipfile.ZipFile(bomb, "w", zipfile.ZIP_DEFLATED) as z:
+        with z.open("omega.npy", "w", force_zip64=True) as f:
+            np.lib.format.write_array_header_1_0(f, {"descr": "<f8", "fortran_order": False,
+                                                     "shape": (300 * 2**20 // 8,)})
+            zeros = bytes(2**20)
+            for _ in range(300):
+                f.write(zeros)
+    assert bomb.stat().st_size < 2 * 2**20
+    with pytest.raises(HydroFileError, match="uncompressed; a coefficient file may hold at most"):
+        load_coefficients(bomb)
+    # a header declaring 1e12 elements in a few bytes
+    liar = tmp_path / "liar.npz"
+    with zipfile.ZipFile(liar, "w") as z, z.open("omega.npy", "w") as f:
+        np.lib.format.write_array_header_1_0(f, {"descr": "<f8", "fortran_order": False,
+                                                 "shape": (10**12,)})
+        f.write(bytes(64))
+    with pytest.raises(HydroFileError, match=r"declares \(1000000000000,\) of float64"):
+        load_coefficients(liar)
+
+
 def test_a_file_that_is_not_npz_is_refused(tmp_path):
     bad = tmp_path / "bad.npz"
     bad.write_bytes(b"\x00not a zip")
