@@ -53,3 +53,36 @@ def test_hostile_environment_and_wave_field_messages_are_refused_and_counted(boa
             "keeping the previous current and wind") in out
     assert out.count("[boat_dynamics]: ignoring invalid /ocean/wave_field") == 1
     assert "'20000 components' is not allowed: at most 1000; keeping the previous sea" in out
+
+
+def test_a_boat_whose_state_diverges_is_stopped_and_the_run_exits_3(boatsim, tmp_path):
+    # a 1 g boat on a 4 t hull's buoyancy went NaN at its 6th step, and the run exited 0
+    # with NaN odometry; now it is held where it was, reported, and the other boat goes on
+    import yaml
+
+    from boat_dynamics.tools.bags import read_bag
+
+    path = tmp_path / "light.yaml"
+    path.write_text(yaml.safe_dump({"boats": [
+        {"name": "feather", "mass": 0.001},
+        {"name": "alpha", "initial_pose": {"position": [20.0, 0.0, 0.0]},
+         "commands": [{"t": 0.0, "thrust": 1.0}]}]}))
+    bag = tmp_path / "bag"
+    sim = boatsim("run", str(path), "--fast", "--duration", "2", "--record", str(bag))
+    assert sim.wait(timeout=120) == 3, sim.output()
+    out = sim.output()
+    assert out.count("boat feather: its state diverged at t = 0.010 s") == 1
+    assert "exit 3: stopped, their state diverged: feather" in out
+    msgs = read_bag(bag, ["/feather/odom", "/alpha/odom", "/diagnostics"])
+    for topic in ("/feather/odom", "/alpha/odom"):
+        assert len(msgs[topic]) == 101  # 0 .. 2 s at 50 Hz
+        assert all(math.isfinite(m.pose.pose.position.z)
+                   and math.isfinite(m.twist.twist.linear.x) for _, m in msgs[topic])
+    alpha = [m.pose.pose.position.x for _, m in msgs["/alpha/odom"]]
+    assert alpha[-1] > alpha[0] + 0.5  # under way
+    feather = {round(m.pose.pose.position.z, 9) for _, m in msgs["/feather/odom"][2:]}
+    assert len(feather) == 1  # held
+    last = msgs["/diagnostics"][-1][1]
+    status = next(s for s in last.status if s.name == "boatsim: feather")
+    assert status.level == 2 and status.message.startswith("stopped: its state diverged")
+    assert next(s for s in last.status if s.name == "boatsim: alpha").level != 2  # rosbags: int

@@ -31,7 +31,12 @@ from boat_dynamics.physics.rudder import Rudder
 from boat_dynamics.physics.wrench import Wrench
 from ocean_sim.physics.waves import Precision
 
-__all__ = ["FleetForces", "FleetInputs", "FleetState", "Group", "System"]
+__all__ = ["DIVERGED_RATE", "DIVERGED_SPEED", "FleetForces", "FleetInputs", "FleetState",
+           "Group", "System"]
+
+#: m/s and rad/s beyond which a boat's state has diverged (:meth:`FleetState.diverged`).
+DIVERGED_SPEED = 1000.0
+DIVERGED_RATE = 1000.0
 
 
 @dataclass(frozen=True)
@@ -83,6 +88,45 @@ class FleetState:
                        [(0.0, states[0].t) if s.slamming is None else s.slamming
                         for s in states], dtype=float),
                    _stack_swept([s.swept for s in states]))
+
+    def diverged(self) -> np.ndarray:
+        """(B,) bool: the boats whose state diverged.
+
+        A NaN or infinite pose, velocity or radiation memory, or a speed over
+        :data:`DIVERGED_SPEED` or a rate over :data:`DIVERGED_RATE`, which no boat reaches (an
+        unstable integration passes them a step or two before it overflows).
+        """
+        rows = [self.position, self.orientation, self.velocity, self.angular_velocity]
+        bad = np.zeros(self.position.shape[0], dtype=bool)
+        for a in rows + ([] if self.memory is None else [self.memory]):
+            bad |= ~np.isfinite(a).all(axis=1)
+        with np.errstate(invalid="ignore", over="ignore"):
+            bad |= np.linalg.norm(self.velocity, axis=1) > DIVERGED_SPEED
+            bad |= np.linalg.norm(self.angular_velocity, axis=1) > DIVERGED_RATE
+        return bad
+
+    def held(self, before: FleetState, boats: np.ndarray) -> FleetState:
+        """This state with the rows of ``boats`` ((B,) bool) as in ``before``, at rest.
+
+        A boat whose state went non-finite is stopped so: where it last was, its velocities,
+        thrust and radiation memory zero; the others' rows are this state's.
+        """
+        def pick(now: np.ndarray | None, then: np.ndarray | None, zero: bool = False):
+            if now is None or then is None:
+                return now
+            mask = boats.reshape((-1,) + (1,) * (now.ndim - 1))
+            return np.where(mask, np.zeros_like(then) if zero else then, now)
+
+        return replace(self, position=pick(self.position, before.position),
+                       orientation=pick(self.orientation, before.orientation),
+                       velocity=pick(self.velocity, before.velocity, True),
+                       angular_velocity=pick(self.angular_velocity, before.angular_velocity,
+                                             True),
+                       throttle=pick(self.throttle, before.throttle, True),
+                       control_weight=pick(self.control_weight, before.control_weight),
+                       memory=pick(self.memory, before.memory, True),
+                       slamming=pick(self.slamming, before.slamming),
+                       swept=pick(self.swept, before.swept, True))
 
     def boat(self, i: int) -> BoatState:
         """Boat ``i``'s state (arrays are copies: the fleet state stays frozen)."""

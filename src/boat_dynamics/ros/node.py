@@ -47,7 +47,14 @@ from boat_dynamics.physics.scenario.specs import (
     WrenchTopics,
 )
 from boat_dynamics.physics.snapshot import SnapshotError, flatten, restore
-from boat_dynamics.physics.system import FleetForces, FleetInputs, FleetState, System
+from boat_dynamics.physics.system import (
+    DIVERGED_RATE,
+    DIVERGED_SPEED,
+    FleetForces,
+    FleetInputs,
+    FleetState,
+    System,
+)
 from boat_dynamics.physics.wrench import cross
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
@@ -245,6 +252,10 @@ class DynamicsNode(Node):
         self._system = System.build([spec.params for spec in scenario.boats])
         self._state = FleetState.stack([spec.initial for spec in scenario.boats])
         self._forces: FleetForces | None = None  # acting during the last step
+        #: boat index -> the simulation time (s) its state diverged (non-finite, or faster
+        #: than any boat): it is stopped (held where it was, at rest), reported, and the run
+        #: exits 3
+        self.stopped: dict[int, float] = {}
         self._towing: np.ndarray | None = None  # (B, 3) the carriages' of the last step
         # The surface contact of self._state, once /diagnostics or the wrenches needed it:
         # the next step starts from that state and takes it (one query and clip, not two).
@@ -787,6 +798,23 @@ class DynamicsNode(Node):
             self._before = self._state
             self._state, self._forces, self._contact = done.state, done.forces, None
             self._towing = done.towing
+            self._watch(done.state)
+
+    def _watch(self, after: FleetState) -> None:
+        """Stop the boats whose state diverged: held where they were, at rest."""
+        bad = after.diverged()
+        for i in np.flatnonzero(bad):
+            if int(i) not in self.stopped:
+                self.stopped[int(i)] = float(after.t)
+                self.get_logger().error(
+                    f"boat {self.boats[i].spec.name or '(root)'}: its state diverged at "
+                    f"t = {after.t:.3f} s (non-finite, or faster than {DIVERGED_SPEED:g} m/s or "
+                    f"{DIVERGED_RATE:g} rad/s: check its mass, inertia, damping and "
+                    "coefficients); it is stopped where it was and the run will exit 3")
+        if self.stopped:
+            held = np.zeros(len(self.boats), dtype=bool)
+            held[list(self.stopped)] = True
+            self._state = after.held(self._before, held)
         self._sim_clock.steps += 1
 
     def publish_outputs(self) -> None:
@@ -883,7 +911,9 @@ class DynamicsNode(Node):
                                 self._substeps,
                                 remedies=self._remedies)
         self._diag_pub.publish(diagnostic_array_cdr(sec, nanosec, [
-            (f"boatsim: {boat.spec.name or 'boat'}", r.level, r.message,
+            (f"boatsim: {boat.spec.name or 'boat'}",
+             *((2, f"stopped: its state diverged at t = {self.stopped[boat.index]:.3f} s")
+               if boat.index in self.stopped else (r.level, r.message)),
              (*r.values, ("commands_received", str(boat.received)),
               ("messages_refused", str(sum(self.refused.values()))),
               ("commands_ignored_not_finite", str(boat.ignored)),

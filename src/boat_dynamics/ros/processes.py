@@ -33,7 +33,9 @@ boats received after the snapshot is lost (at most a second of simulation time o
 and subscribers see that second of its boats' topics again. Under ``--lockstep`` a dead
 dynamics process stops the run instead (the replayer's commands it had received since the
 snapshot would be missing; the barrier would wait for them forever); in real time it is not
-restarted (the others go on). The run's exit status is 1 when any child died. SIGINT and
+restarted (the others go on). The run's exit status is 1 when any child died, else 3
+(:data:`~boat_dynamics.ros.runner.EXIT_STOPPED`) when one stopped a boat whose state
+diverged. SIGINT and
 SIGTERM are forwarded; the recorder is stopped (its bag finalized) after the simulation's
 processes. Only the first dynamics process shows the status line.
 """
@@ -56,7 +58,7 @@ from typing import TextIO
 from boat_dynamics.physics.scenario import Scenario
 from boat_dynamics.process import STOP_SIGNALS, start_child, stop_processes
 from boat_dynamics.ros.barrier import shard_slice
-from boat_dynamics.ros.runner import RunOptions
+from boat_dynamics.ros.runner import EXIT_STOPPED, RunOptions
 from boat_dynamics.tools.recording import RecordError
 
 __all__ = ["run_processes"]
@@ -263,7 +265,7 @@ def _watch(children: list[_Child], epoch: float, stopping, status: TextIO,
             if c.status is not None or (code := c.proc.poll()) is None:
                 continue
             c.status = code
-            if code == 0 or stopped:
+            if code in (0, EXIT_STOPPED) or stopped:  # finished (a boat stopped is no crash)
                 continue
             died = True
             print(f"boatsim: process {c.label} (pid {c.proc.pid}) died: {_describe(code)}",
@@ -319,6 +321,8 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
                       cuts)
         stop_processes([children[0].proc])  # the ocean, when it runs with no duration
         ok = all(c.status in (0, None) for c in children) and not died
+        if not ok and not died and any(c.status == EXIT_STOPPED for c in children):
+            return EXIT_STOPPED
         return 0 if ok else 1
     finally:
         stop_processes([c.proc for c in children if c.proc is not None])

@@ -51,7 +51,11 @@ from boat_msgs_py.qos import RECORD_QOS
 from boat_msgs_py.tap import Tap
 from ocean_sim.ros.node import OceanNode
 
-__all__ = ["CHECKPOINT_PERIOD", "RunOptions", "run"]
+__all__ = ["CHECKPOINT_PERIOD", "EXIT_STOPPED", "RunOptions", "run"]
+
+#: The exit status of a run that went to its end with a boat stopped because its state diverged
+#: (the node's watchdog): not a crash, so a supervisor does not restart it.
+EXIT_STOPPED = 3
 
 #: Beyond this many publishers and subscriptions, a stopping process does not destroy them
 #: one by one (2,408 took 2.8 s, 14,008 took 67 s: quadratic, measured).
@@ -445,7 +449,8 @@ class _Loop:
         """Make the nodes, wait for the sea state, step until the duration or a stop.
 
         Returns:
-            The exit status: 0, or 1 when no wave field arrived.
+            The exit status: 0, 1 when no wave field arrived, :data:`EXIT_STOPPED` when a boat
+            was stopped, its state diverged.
         """
         self._make_nodes()
         if self.options.ready_fd is not None and not self._handshake():
@@ -486,6 +491,12 @@ class _Loop:
                     self.dynamics.check_command_types()
         if self.dynamics is not None:
             self.display.update(self.dynamics, self.clock.t, force=True)
+            if self.dynamics.stopped:
+                names_ = ", ".join(self.dynamics.boats[i].spec.name or "(root)"
+                                   for i in self.dynamics.stopped)
+                self.logger.error(f"exit {EXIT_STOPPED}: stopped, their state diverged: "
+                                  f"{names_}")
+                return EXIT_STOPPED
         return 0
 
     def _step(self, wall0: float) -> None:

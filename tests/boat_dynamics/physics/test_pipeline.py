@@ -305,3 +305,28 @@ def test_init_panels_froude_krylov_hulls_for_the_shortest_wave_acting_on_them():
     still, _ = pipeline.init(System.build([sc.boats[0].params]),
                              FleetState.stack([sc.boats[0].initial]), WaveField())
     assert still.params[0].buoyancy.mesh is sc.boats[0].params.buoyancy.mesh
+
+
+def test_a_diverged_boat_is_found_and_held_where_it_was_at_rest():
+    # the node's watchdog: NaN, or faster than any boat (1000 m/s, 1000 rad/s); the 1 g boat
+    # of tests/ros/test_hostile_inputs.py passes 1000 m/s at its first step
+    from boat_dynamics.physics.scenario import parse_scenario
+    from boat_dynamics.physics.system import FleetInputs
+
+    sc = parse_scenario({"boats": [{"name": "feather", "mass": 0.001},
+                                   {"name": "alpha", "initial_pose": {"position": [20, 0, 0]}}]})
+    system, before = pipeline.start(sc.boats, sc.sea)
+    inputs = FleetInputs.stack([BoatInputs(throttle=1.0), BoatInputs(throttle=1.0)])
+    after = pipeline.step(system, before, inputs, sc.sea, 0.01).state
+    assert after.diverged().tolist() == [True, False]
+    held = after.held(before, after.diverged())
+    np.testing.assert_array_equal(held.position[0], before.position[0])
+    np.testing.assert_array_equal(held.orientation[0], before.orientation[0])
+    assert not held.velocity[0].any() and not held.angular_velocity[0].any()
+    assert not held.throttle[0].any()
+    for name in ("position", "velocity", "throttle"):  # the other boat untouched
+        np.testing.assert_array_equal(getattr(held, name)[1], getattr(after, name)[1])
+    nan = replace(after, position=np.where([[False], [True]], np.nan, after.position))
+    assert nan.diverged().tolist() == [True, True]
+    spin = replace(before, angular_velocity=np.array([[0.0, 0.0, 1001.0], [0.0, 0.0, 999.0]]))
+    assert spin.diverged().tolist() == [True, False]
