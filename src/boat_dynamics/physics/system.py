@@ -96,14 +96,13 @@ class FleetState:
         :data:`DIVERGED_SPEED` or a rate over :data:`DIVERGED_RATE`, which no boat reaches (an
         unstable integration passes them a step or two before it overflows).
         """
-        rows = [self.position, self.orientation, self.velocity, self.angular_velocity]
-        bad = np.zeros(self.position.shape[0], dtype=bool)
-        for a in rows + ([] if self.memory is None else [self.memory]):
-            bad |= ~np.isfinite(a).all(axis=1)
-        with np.errstate(invalid="ignore", over="ignore"):
-            bad |= np.linalg.norm(self.velocity, axis=1) > DIVERGED_SPEED
-            bad |= np.linalg.norm(self.angular_velocity, axis=1) > DIVERGED_RATE
-        return bad
+        with np.errstate(all="ignore"):  # a NaN or an infinity anywhere makes the sum one
+            v2 = np.einsum("ij,ij->i", self.velocity, self.velocity)
+            w2 = np.einsum("ij,ij->i", self.angular_velocity, self.angular_velocity)
+            total = self.position.sum(axis=1) + self.orientation.sum(axis=1) + v2 + w2
+            if self.memory is not None:
+                total += self.memory.view(float).sum(axis=1)
+            return ~np.isfinite(total) | (v2 > DIVERGED_SPEED**2) | (w2 > DIVERGED_RATE**2)
 
     def held(self, before: FleetState, boats: np.ndarray) -> FleetState:
         """This state with the rows of ``boats`` ((B,) bool) as in ``before``, at rest.
