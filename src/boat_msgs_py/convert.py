@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from boat_msgs.msg import Environment as EnvironmentMsg
 from boat_msgs.msg import WaveComponent as WaveComponentMsg
@@ -35,6 +37,7 @@ __all__ = [
     "environment_to_msg",
     "gnss_velocity",
     "imu",
+    "lockstep_grant",
     "nav_sat_fix",
     "noisy_odometry",
     "odometry",
@@ -217,6 +220,22 @@ def environment_to_msg(environment: Environment, stamp: Time) -> EnvironmentMsg:
                           wind_speed=float(wind.speed), wind_direction=float(wind.direction),
                           gusts=wind.gusts, gust_components=int(wind.components),
                           seed=int(wind.seed))
+
+
+def lockstep_grant(data) -> tuple[float, int]:
+    """A /boatsim/lockstep grant [until s, commands sent] as (until, commands).
+
+    Raises:
+        ValueError: fewer than two values, or one non-finite, negative, or a count past 2^53
+            (an infinite count raised OverflowError in the subscriber's callback).
+    """
+    if len(data) < 2:
+        raise ValueError(f"{len(data)} values: a grant is [until_s, commands]")
+    until, commands = float(data[0]), float(data[1])
+    if not (math.isfinite(until) and until >= 0.0 and math.isfinite(commands)
+            and 0.0 <= commands <= 2.0**53):
+        raise ValueError(f"[{until}, {commands}]: both finite and >= 0 (the count at most 2^53)")
+    return until, int(commands)
 
 
 def environment_from_msg(msg: EnvironmentMsg) -> Environment:

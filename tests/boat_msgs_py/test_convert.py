@@ -98,3 +98,20 @@ def test_a_wave_field_message_of_too_many_components_is_refused_before_it_is_bui
     msg = WaveFieldMsg(gravity=9.81, depth=math.inf, components=[one] * 20_000)
     with pytest.raises(InvalidSeaStateError, match=r"20000 components.*at most 1000"):
         wave_field_from_msg(msg)
+
+
+@pytest.mark.parametrize("data", [[1.0], [math.nan, 3.0], [1.0, math.inf], [-1.0, 2.0],
+                                  [1.0, -2.0], [1.0, 1e300]])
+def test_a_lockstep_grant_out_of_bounds_is_refused(data):
+    # an infinite command count raised OverflowError inside the node's callback
+    from boat_msgs_py.convert import lockstep_grant
+
+    with pytest.raises(ValueError, match=r"grant is|finite and >= 0"):
+        lockstep_grant(data)
+
+
+def test_a_lockstep_grant_is_the_time_and_the_count():
+    from boat_msgs_py.convert import lockstep_grant
+
+    assert lockstep_grant([2.5, 7.0]) == (2.5, 7)
+    assert lockstep_grant([1e18, 3.0]) == (1e18, 3)  # the replayer's last grant

@@ -31,6 +31,7 @@ from std_msgs.msg import Float64MultiArray, UInt64, UInt64MultiArray
 from boat_dynamics.ros.node import SimClock
 from boat_msgs_py import names
 from boat_msgs_py.cdr import clock_template, stamp_parts, uint64_multi_array_cdr
+from boat_msgs_py.convert import lockstep_grant
 from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, STEP_DONE_QOS, STEP_GRANT_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 
@@ -168,6 +169,7 @@ class StepConductor(Node):
         self._next_clock = 0.0
         self._heard: dict[int, float] = {}  # process -> wall time (monotonic) of its report
         self._silent: set[int] = set()  # processes said to be silent
+        self._refused_grant = False  # a bad /boatsim/lockstep grant was logged
 
     def _on_done(self, msg: UInt64MultiArray) -> None:
         if len(msg.data) != 4:
@@ -189,9 +191,15 @@ class StepConductor(Node):
                                    f"{steps}; the run is at step {self.done()}): going on")
 
     def _on_lockstep(self, msg: Float64MultiArray) -> None:
-        if len(msg.data) >= 2:
-            self.granted_until = max(self.granted_until, float(msg.data[0]))
-            self.granted_commands = max(self.granted_commands, int(msg.data[1]))
+        try:
+            until, commands = lockstep_grant(msg.data)
+        except ValueError as exc:  # logged once; a bad grant changes nothing
+            if not self._refused_grant:
+                self.get_logger().error(f"ignoring invalid {names.LOCKSTEP}: {exc}")
+            self._refused_grant = True
+            return
+        self.granted_until = max(self.granted_until, until)
+        self.granted_commands = max(self.granted_commands, commands)
 
     def missing(self) -> list[int]:
         """The processes that have not reported yet."""

@@ -71,6 +71,7 @@ from boat_msgs_py.cdr import (
 )
 from boat_msgs_py.convert import (
     environment_from_msg,
+    lockstep_grant,
     seconds_to_time,
     wave_field_from_msg,
 )
@@ -593,18 +594,14 @@ class DynamicsNode(Node):
         self.environment = environment
 
     def _on_lockstep(self, msg: Float64MultiArray) -> None:
-        """A replayer's grant [T s, n commands]: both finite and >= 0, or refused."""
-        if len(msg.data) < 2:
-            self._refuse(names.LOCKSTEP, f"{len(msg.data)} values", "the grant so far "
-                         "(a grant is [until_s, commands])")
-            return
-        until, commands = float(msg.data[0]), float(msg.data[1])
-        if not (math.isfinite(until) and math.isfinite(commands) and until >= 0.0
-                and 0.0 <= commands <= 2.0**53):
-            self._refuse(names.LOCKSTEP, [until, commands], "the grant so far (finite, >= 0)")
+        """A replayer's grant [T s, n commands] (:func:`.convert.lockstep_grant`), or refused."""
+        try:
+            until, commands = lockstep_grant(msg.data)
+        except ValueError as exc:
+            self._refuse(names.LOCKSTEP, exc, "the grant so far")
             return
         self.granted_until = max(self.granted_until, until)
-        self.granted_commands = max(self.granted_commands, int(commands))
+        self.granted_commands = max(self.granted_commands, commands)
 
     def announce_matches(self) -> None:
         """Lockstep, while holding: say which of the replayer's topics the boats have matched.
