@@ -48,8 +48,12 @@ from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from boat_dynamics.physics.tuning import horizontal_mass
 from ocean_sim.physics.waves import WaveComponent, WaveField, angular_frequency
 
-__all__ = ["MOORING_PERIODS", "Response", "encounter_frequency", "potential_flow_rao",
-           "regular_wave_response", "rigid_body_matrix"]
+__all__ = ["MIN_ENCOUNTERS", "MOORING_PERIODS", "Response", "encounter_frequency",
+           "potential_flow_rao", "regular_wave_response", "rides", "rigid_body_matrix"]
+
+#: The fewest encounters with the wave a towed run may have in its ``max_time``: fewer, and
+#: the boat rides the wave (:func:`rides`).
+MIN_ENCOUNTERS = 10
 
 #: Fossen's (2005) L: the body-frame velocity at speed U is the seakeeping one plus U L xi.
 _L = np.zeros((6, 6))
@@ -87,6 +91,14 @@ class Response:
     def __post_init__(self) -> None:
         if math.isnan(self.encounter):
             object.__setattr__(self, "encounter", self.omega)
+
+
+def rides(encounter: float, max_time: float) -> bool:
+    """Whether a boat meeting the wave at ``encounter`` (rad/s, >= 0) rides it.
+
+    It does when it meets the wave fewer than :data:`MIN_ENCOUNTERS` times in ``max_time`` s.
+    """
+    return encounter * max_time < 2 * math.pi * MIN_ENCOUNTERS
 
 
 def encounter_frequency(omega: float, wavenumber: float, speed: float, direction: float
@@ -144,7 +156,7 @@ def regular_wave_response(params: BoatParams, wavelength: float, direction: floa
     sea = WaveField((wave,), gravity, depth)
     omega = float(angular_frequency(wave.wavenumber, gravity, depth))
     encounter = abs(encounter_frequency(omega, wave.wavenumber, speed, direction))
-    if speed != 0.0 and encounter * max_time < 20 * math.pi:
+    if speed != 0.0 and rides(encounter, max_time):
         raise ValueError(f"speed {speed} m/s meets the wave of {wavelength:g} m from "
                          f"{math.degrees(direction):g} deg at {encounter:.3g} rad/s: fewer than "
                          f"10 encounters in {max_time:g} s")

@@ -21,10 +21,12 @@ import numpy as np
 from boat_dynamics.physics.model import BoatParams
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.seakeeping import (
+    MIN_ENCOUNTERS,
     Response,
     encounter_frequency,
     potential_flow_rao,
     regular_wave_response,
+    rides,
     rigid_body_matrix,
 )
 from boat_dynamics.physics.tuning import derive
@@ -98,10 +100,11 @@ def _met(wavelength: float, direction: float, speed: float, gravity: float, dept
     k = 2 * math.pi / wavelength
     encounter = abs(encounter_frequency(float(angular_frequency(k, gravity, depth)), k, speed,
                                         direction))
-    if encounter * MAX_TIME < 20 * math.pi:
+    if rides(encounter, MAX_TIME):
         raise RaoError(f"--speed: {speed!r} m/s rides the wave of {wavelength:.3g} m from "
                        f"{math.degrees(direction):g} deg (encounter frequency "
-                       f"{encounter:.3g} rad/s: fewer than 10 encounters in {MAX_TIME:g} s); "
+                       f"{encounter:.3g} rad/s: fewer than {MIN_ENCOUNTERS} encounters in "
+                       f"{MAX_TIME:g} s); "
                        f"leave out that wavelength or direction")
     return encounter
 
