@@ -251,8 +251,12 @@ def _add_bag_verbs(verbs) -> None:
     reindex = verbs.add_parser(
         "reindex", help="make a bag whose recording was killed readable again",
         description="Rebuild the MCAP summary and metadata.yaml of BAG (as `ros2 bag "
-                    "reindex`): every message of the complete chunks is kept; a killed "
-                    "recording loses at most its last second.")
+                    "reindex`): every message of every intact chunk is kept, those after "
+                    "damage in the middle included; a killed recording loses at most its "
+                    "last second. The original file is kept unchanged as NAME.mcap.orig; a "
+                    "whole bag is left alone; a bag still being recorded is refused. Exit "
+                    "status 0: readable, nothing lost but a killed recording's tail; 1: "
+                    "damage in the middle lost messages; 2: not a bag, or being recorded.")
     reindex.add_argument("bag", metavar="BAG")
     plot = verbs.add_parser(
         "plot", help="plot a recorded run: a PNG per boat",
@@ -713,7 +717,11 @@ def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
 
 
 def _reindex(bag: str) -> int:
-    """``boatsim reindex BAG``: 0 when rewritten, 2 when BAG is not a bag."""
+    """``boatsim reindex BAG``: exit status 0, 1 or 2 (see the verb's description).
+
+    0 when whole (a killed recording's tail dropped), 1 when damage in the middle cost
+    messages, 2 when BAG is not a bag or is still being recorded.
+    """
     from boat_dynamics.tools.bagfile import ReindexError, reindex
 
     try:
@@ -722,10 +730,28 @@ def _reindex(bag: str) -> int:
         print(f"boatsim reindex: error: {exc}", file=sys.stderr)
         return 2
     topics = "  ".join(f"{t} {n}" for t, n in sorted(report.counts.items()))
-    print(f"boatsim: reindexed {bag}: {sum(report.counts.values())} messages on "
-          f"{len(report.counts)} topics, up to bag time {report.end_ns / 1e9:.3f} s; "
-          f"{report.dropped_bytes} bytes of an incomplete tail dropped\n  {topics}")
-    return 0
+    total = sum(report.counts.values())
+    if report.original is None:
+        print(f"boatsim: {bag} is whole: {total} messages on {len(report.counts)} topics; "
+              f"nothing rewritten\n  {topics}")
+        return 0
+    print(f"boatsim: reindexed {bag}: {total} messages on {len(report.counts)} topics, up to "
+          f"bag time {report.end_ns / 1e9:.3f} s; the original is kept unchanged as "
+          f"{report.original}\n  {topics}")
+    if report.dropped_bytes:
+        print(f"  truncated: {report.dropped_bytes} bytes at the end held no whole record (the "
+              "chunk being written when the recording stopped): dropped")
+    if report.whole:
+        return 0
+    spans = ", ".join(f"{a}-{b}" for a, b in report.damaged)
+    lost = ("an unknown number of messages" if report.lost is None
+            else f"{report.lost} of the {report.lost + total} messages its summary lists")
+    orphans = (f" ({report.orphans} read but dropped: their channel's definition was lost)"
+               if report.orphans else "")
+    print(f"boatsim reindex: warning: damaged in the middle (bytes {spans or 'none'}): "
+          f"{lost} lost{orphans}; every intact chunk after the damage is kept",
+          file=sys.stderr)
+    return 1
 
 
 def _refuse_boat(path, exc, index: int) -> int:

@@ -74,8 +74,12 @@ def _open_bag(path: str | Path) -> Iterator[tuple[Path, object]]:
     except BagError:
         raise
     except Exception as exc:  # rosbags raises ReaderError, OSError, ...
-        hint = ""
-        if p.is_dir() and any(p.glob("*.mcap")):
+        from boat_dynamics.tools.bagfile import recorder_alive
+
+        hint, pid = "", recorder_alive(p) if p.is_dir() else None
+        if pid is not None:
+            hint = f"; it is still being recorded (process {pid}): read it when that ends"
+        elif p.is_dir() and any(p.glob("*.mcap")):
             hint = (f"; if its recording was killed, `boatsim reindex {p}` makes it readable "
                     "(it loses at most the last second)")
         raise BagError(f"{p}: not a readable rosbag2 bag ({_one_line(exc)}){hint}") from exc

@@ -24,10 +24,12 @@ from rosbags.rosbag2 import Reader, StoragePlugin, Writer
 
 from boat_dynamics.tools.bagfile import (
     CHUNK_SPAN_NS,
+    LOCK_NAME,
     ROS_DISTRO,
     JazzyWriter,
     ReindexError,
     merge,
+    recorder_alive,
     reindex,
 )
 from boat_dynamics.tools.bags import BagError, read_bag
@@ -79,6 +81,11 @@ def _write_bag(path: Path, n: int, close: bool = True) -> JazzyWriter:
     if close:
         writer.close()
     return writer
+
+
+def _die(writer: JazzyWriter) -> None:
+    """What the kernel does to a killed recorder's lock: release it (the file stays)."""
+    os.close(writer._lock)
 
 
 def _stamps(bag: Path) -> list[int]:
@@ -175,12 +182,25 @@ def test_reindex_of_a_bag_cut_anywhere_keeps_a_readable_prefix(tmp_path_factory,
         assert len(stamps) == 330 and report.dropped_bytes == 0
 
 
-def test_reindex_of_a_closed_bag_keeps_every_message_and_is_idempotent(tmp_path):
+def test_reindex_leaves_a_whole_closed_bag_alone(tmp_path):
+    _write_bag(tmp_path / "bag", 250)
+    files = {p.name: p.read_bytes() for p in (tmp_path / "bag").iterdir()}
+    report = reindex(tmp_path / "bag")
+    assert report.counts == {"/clock": 250, "/wrench/total": 25}
+    assert report.whole and report.lost == 0 and report.original is None
+    assert {p.name: p.read_bytes() for p in (tmp_path / "bag").iterdir()} == files
+
+
+def test_reindex_keeps_the_original_and_is_idempotent(tmp_path):
     _write_bag(tmp_path / "bag", 250)
     before = read_bag(tmp_path / "bag")
-    reindex(tmp_path / "bag")
+    (tmp_path / "bag" / "metadata.yaml").unlink()  # as a killed recording has none
+    original = (tmp_path / "bag" / "bag.mcap").read_bytes()
+    report = reindex(tmp_path / "bag")
+    assert report.original == tmp_path / "bag" / "bag.mcap.orig"
+    assert report.original.read_bytes() == original
     first = (tmp_path / "bag" / "bag.mcap").read_bytes()
-    reindex(tmp_path / "bag")
+    assert reindex(tmp_path / "bag").original is None  # whole now: left alone
     assert (tmp_path / "bag" / "bag.mcap").read_bytes() == first
     after = read_bag(tmp_path / "bag")
     assert {t: len(m) for t, m in after.items()} == {"/clock": 250, "/wrench/total": 25}
@@ -221,6 +241,8 @@ def _clock_bag(path: Path, steps: list[int], topic: str = "/clock", close: bool 
         writer.write(conn, i * STEP_NS, _clock(i * STEP_NS))
     if close:
         writer.close()
+    else:
+        _die(writer)
 
 
 def test_merge_joins_the_bags_of_several_processes_in_time_order(tmp_path):
@@ -262,8 +284,130 @@ def test_merge_takes_a_restarted_processs_dead_part_up_to_its_snapshot(tmp_path)
         writer.write(conn, i * STEP_NS, _clock(i * STEP_NS))
         if i == 200:
             writer.flush()
+    _die(writer)
     _clock_bag(tmp_path / "dead+", list(range(201, 300)))
     counts = merge([tmp_path / "dead", tmp_path / "dead+"], tmp_path / "all",
                    until={tmp_path / "dead": 200 * STEP_NS})
     assert counts == {"/clock": 300}
     assert _stamps(tmp_path / "all") == [i * STEP_NS for i in range(300)]  # each once
+
+
+def test_reindex_refuses_a_bag_that_is_still_being_recorded(tmp_path):
+    bag = tmp_path / "bag"
+    child = subprocess.Popen([sys.executable, "-c", _WRITER, str(bag), "300"],
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline().startswith("written")
+        before = (bag / "bag.mcap").read_bytes()
+        assert recorder_alive(bag) == child.pid
+        with pytest.raises(ReindexError, match=f"still being recorded .process {child.pid}"):
+            reindex(bag)
+        with pytest.raises(BagError, match="still being recorded"):  # not "reindex it"
+            read_bag(bag)
+        assert (bag / "bag.mcap").read_bytes() == before
+        assert sorted(p.name for p in bag.iterdir()) == [LOCK_NAME, "bag.mcap"]
+    finally:
+        child.send_signal(signal.SIGKILL)
+        child.wait()
+    assert recorder_alive(bag) is None  # the kernel released the dead recorder's lock
+    report = reindex(bag)
+    assert report.whole and report.counts["/clock"] > 0
+    assert not (bag / LOCK_NAME).exists()
+
+
+def _chunks(data: bytes) -> list[tuple[int, int, list[int]]]:
+    """(start, end, log times) of each chunk of a closed bag, read with the mcap library."""
+    from io import BytesIO
+
+    from mcap.data_stream import ReadDataStream
+    from mcap.records import Chunk, Message
+    from mcap.stream_reader import breakup_chunk
+
+    out = []
+    for index in make_reader(BytesIO(data)).get_summary().chunk_indexes:
+        start, end = index.chunk_start_offset, index.chunk_start_offset + index.chunk_length
+        chunk = Chunk.read(ReadDataStream(BytesIO(data[start + 9:end])))
+        out.append((start, end, [r.log_time for r in breakup_chunk(chunk)
+                                 if isinstance(r, Message)]))
+    return out
+
+
+def test_reindex_recovers_every_chunk_after_a_damaged_length_byte(tmp_path):
+    _write_bag(tmp_path / "bag", 501)
+    data = bytearray((tmp_path / "bag" / "bag.mcap").read_bytes())
+    chunks = _chunks(bytes(data))
+    start, _, lost = chunks[2]
+    data[start + 3] ^= 0x40  # the third chunk's length: 2^22 bytes more
+    (tmp_path / "bag" / "bag.mcap").write_bytes(data)
+
+    report = reindex(tmp_path / "bag")
+
+    assert report.damaged and report.damaged[0][0] == start and report.dropped_bytes == 0
+    assert report.lost == len(lost) and not report.whole  # the summary listed them
+    assert report.original.read_bytes() == data  # kept, unchanged
+    assert (tmp_path / "bag" / "metadata.yaml.orig").exists()
+    kept = set(_stamps(tmp_path / "bag"))
+    expected = {t for s, _, times in chunks if s != start for t in times}
+    assert expected <= kept and not kept & (set(lost) - expected)
+
+
+def _damage(data: bytes, at: int, noise: bytes) -> bytes:
+    return data[:at] + noise + data[at + len(noise):]
+
+
+@settings(max_examples=40, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(where=st.floats(0.0, 1.0), noise=st.binary(min_size=1, max_size=40),
+       cut=st.one_of(st.none(), st.floats(0.3, 1.0)))
+def test_reindex_fuzz_never_loses_an_intact_chunk_nor_touches_the_original(
+        tmp_path_factory, where, noise, cut):
+    """Damage anywhere in the data section of a closed bag, or after the first chunk of a
+    killed one (cut short, no summary: its first chunk holds the channel definitions)."""
+    root = tmp_path_factory.mktemp("fuzz")
+    (root / "src").mkdir()
+    _write_bag(root / "src" / "bag", 330)
+    full = (root / "src" / "bag" / "bag.mcap").read_bytes()
+    chunks = _chunks(full)
+    end = len(full) if cut is None else max(chunks[0][1] + 1, int(cut * len(full)))
+    first = 8 if cut is None else chunks[0][1]
+    data_end = chunks[-1][1]
+    at = first + int(where * (min(end, data_end) - first - 1))
+    damaged = _damage(full, at, noise)[:end]
+    (root / "bag").mkdir()
+    (root / "bag" / "bag.mcap").write_bytes(damaged)
+    if cut is None:
+        (root / "bag" / "metadata.yaml").write_bytes(
+            (root / "src" / "bag" / "metadata.yaml").read_bytes())
+    report = reindex(root / "bag")
+
+    touched = range(at, at + len(noise))
+    intact = {t for s, e, times in chunks if e <= end
+              and not (s < touched.stop and touched.start < e) for t in times}
+    everything = {t for _, _, times in chunks for t in times}
+    kept = set(_stamps(root / "bag"))
+    assert intact & set(range(0, 330 * STEP_NS, STEP_NS)) <= kept <= everything
+    if report.original is not None:
+        assert report.original.read_bytes() == damaged
+    else:
+        assert (root / "bag" / "bag.mcap").read_bytes() == damaged
+
+
+def test_reindex_exit_status_tells_a_cut_tail_from_damage_in_the_middle(tmp_path, capsys):
+    from boat_dynamics.cli import main
+
+    _write_bag(tmp_path / "bag", 300)
+    assert main(["reindex", str(tmp_path / "bag")]) == 0
+    assert "is whole: 330 messages" in capsys.readouterr().out
+    data = (tmp_path / "bag" / "bag.mcap").read_bytes()
+    (tmp_path / "bag" / "metadata.yaml").unlink()
+    (tmp_path / "bag" / "bag.mcap").write_bytes(data[: len(data) * 2 // 3])  # killed
+    assert main(["reindex", str(tmp_path / "bag")]) == 0
+    out = capsys.readouterr().out
+    assert "truncated:" in out and "bag.mcap.orig" in out
+    start = _chunks(data)[1][0]
+    damaged = bytearray(data)
+    damaged[start + 40] ^= 0xFF  # inside the second chunk: its CRC no longer matches
+    (tmp_path / "bag" / "bag.mcap").write_bytes(damaged)
+    assert main(["reindex", str(tmp_path / "bag")]) == 1
+    err = capsys.readouterr().err
+    assert f"damaged in the middle (bytes {start}-" in err and "of the 330 messages" in err
