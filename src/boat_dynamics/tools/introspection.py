@@ -283,11 +283,15 @@ def topic_pub(s: Session, topic: str, type_name: str, values: str, out: TextIO,
     """
     import yaml
 
+    from boat_dynamics.physics.scenario import MAX_DEPTH
+    from boat_dynamics.physics.scenario.read import yaml_depth
     from boat_msgs_py.fields import FieldError, message_class, set_fields
     from boat_msgs_py.qos import COMMAND_QOS
 
     cls = message_class(type_name)
     try:
+        if yaml_depth(values, MAX_DEPTH) > MAX_DEPTH:  # before the recursive composer
+            raise IntrospectionError(f"VALUES must nest at most {MAX_DEPTH} levels deep")
         parsed = yaml.safe_load(values) if values.strip() else {}
         msg = set_fields(cls(), {} if parsed is None else parsed)
     except yaml.YAMLError as exc:
@@ -380,9 +384,12 @@ def param_set(s: Session, target: str, name: str, text: str, wait: float = 5.0) 
     from rcl_interfaces.msg import ParameterType
     from rclpy.parameter import Parameter
 
+    from boat_dynamics.physics.scenario import MAX_DEPTH
+    from boat_dynamics.physics.scenario.read import yaml_depth
+
     client = _parameter_client(s, target, wait)
     try:
-        value = yaml.safe_load(text)
+        value = text if yaml_depth(text, MAX_DEPTH) > MAX_DEPTH else yaml.safe_load(text)
     except yaml.YAMLError:
         value = text
     current = _result(s, client.get_parameters([name]), f"getting {name}", wait)

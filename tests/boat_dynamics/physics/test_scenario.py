@@ -211,6 +211,10 @@ def _alias_bomb(levels: int = 9) -> str:
     (bytes(range(256)) * 16, "must be UTF-8 text (YAML); byte 128 is 0x80"),
     (("boats: " + "[" * 5000 + "]" * 5000).encode(), "nest at most 32 levels"),
     (("boats: " + "[" * 40 + "]" * 40).encode(), "nest at most 32 levels"),
+    # 100,000 levels: the C composer overflowed its stack (SIGSEGV) before any check ran
+    (("boats: " + "[" * 100_000 + "]" * 100_000).encode(), "nest at most 32 levels"),
+    (("boats:\n" + "- " * 100_000 + "x\n").encode(), "nest at most 32 levels"),
+    (("boats: " + "{a: " * 30_000 + "}" * 30_000).encode(), "nest at most 32 levels"),
     (_alias_bomb().encode(), "at most 200000 values with its YAML aliases expanded"),
     (b"# padding\n" * 110_000, "at most 1000000 bytes"),
 ])

@@ -60,3 +60,17 @@ def test_a_topic_without_publishers_is_waited_for_then_subscribed_best_effort():
     qos = _matching_qos(Session(Empty(), _NoWaitExecutor()), "/nobody", wait=0.05)
     assert qos.durability == DurabilityPolicy.VOLATILE
     assert qos.reliability == ReliabilityPolicy.BEST_EFFORT
+
+
+def test_topic_pub_refuses_values_nested_deeper_than_a_scenario_may_be():
+    """100,000 levels of YAML in VALUES: RecursionError in PyYAML's composer before."""
+    import io
+
+    import pytest
+
+    from boat_dynamics.tools.introspection import IntrospectionError, Session, topic_pub
+
+    deep = "{data: " + "[" * 100_000 + "]" * 100_000 + "}"
+    with pytest.raises(IntrospectionError, match="VALUES must nest at most 32 levels deep"):
+        topic_pub(Session(None, _NoWaitExecutor()), "/x", "std_msgs/msg/Float64", deep,
+                  io.StringIO())

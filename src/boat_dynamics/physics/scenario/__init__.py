@@ -20,7 +20,7 @@ from typing import Any
 import yaml
 
 from boat_dynamics.physics.scenario.boat import DEFAULT_CRITICAL_RATIO, boat_block
-from boat_dynamics.physics.scenario.read import describe, mapping, only
+from boat_dynamics.physics.scenario.read import describe, mapping, only, yaml_depth
 from boat_dynamics.physics.scenario.sea import environment_block, ocean_block, simulation_block
 from boat_dynamics.physics.scenario.specs import (
     BoatSpec,
@@ -66,6 +66,8 @@ def load_scenario(path: str | Path) -> Scenario:
         raise ScenarioError("file", str(p), f"must be UTF-8 text (YAML); byte {exc.start} is "
                                             f"0x{raw[exc.start]:02x}") from exc
     try:
+        if yaml_depth(text, MAX_DEPTH) > MAX_DEPTH:  # before the (recursive) composer
+            raise ScenarioError("file", str(p), f"must nest at most {MAX_DEPTH} levels deep")
         data = yaml.load(text, Loader=_LOADER)  # a safe loader (_LOADER)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)

@@ -21,7 +21,8 @@ import numpy as np
 from boat_dynamics.physics.scenario.specs import ScenarioError
 
 __all__ = ["MAX_NAME_LENGTH", "ROS_NAME_RULE", "BlockDoc", "KeyDoc", "choice", "describe",
-           "flag", "integer", "is_ros_name", "keys_read", "mapping", "number", "only", "vector"]
+           "flag", "integer", "is_ros_name", "keys_read", "mapping", "number", "only", "vector",
+           "yaml_depth"]
 
 #: The longest boat, thruster or sensor name: each goes into topic, frame and node names,
 #: which ROS 2 caps at 255 characters (rmw's validation).
@@ -30,6 +31,30 @@ MAX_NAME_LENGTH = 64
 ROS_NAME_RULE = (f"a ROS name: an ASCII letter, then ASCII letters, digits or _, at most "
                  f"{MAX_NAME_LENGTH} characters")
 _ROS_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
+
+
+def yaml_depth(text: str, limit: int) -> int:
+    """How deep YAML ``text`` nests mappings and sequences, counted up to ``limit + 1``.
+
+    Read from the parser's events, which libyaml produces with a stack of its own, not by
+    recursion; so a document nested 100,000 levels deep is measured before the composer, which
+    recurses once per level (in C: a stack overflow, SIGSEGV), builds it.
+
+    Raises:
+        yaml.YAMLError: ``text`` is not YAML.
+    """
+    import yaml
+
+    depth = deepest = 0
+    for event in yaml.parse(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)):
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+            deepest = max(deepest, depth)
+            if deepest > limit:
+                break
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1
+    return deepest
 
 
 def is_ros_name(value: object) -> bool:
