@@ -27,6 +27,7 @@ __all__ = [
     "SAMPLE_SURFACE",
     "STEP_DONE",
     "STEP_GRANT",
+    "STEP_REFUSED",
     "SURFACE_CLOUD",
     "TF",
     "TF_STATIC",
@@ -85,9 +86,13 @@ LOCKSTEP_READY = "/boatsim/lockstep_ready"
 #: step count is below this" (``run --fast`` over several processes: the clock owner, in the
 #: ocean's process, publishes it).
 STEP_GRANT = "/boatsim/step_grant"
-#: std_msgs/UInt64MultiArray [K, N, steps, commands]: dynamics process K of N has taken
-#: ``steps`` steps and received ``commands`` command messages (its report to the barrier).
+#: std_msgs/UInt64MultiArray [K, N, steps, commands, digest]: dynamics process K of N has
+#: taken ``steps`` steps and received ``commands`` command messages (its report to the
+#: barrier); ``digest`` is its scenario's (the first 16 hex digits of ``Scenario.digest``).
 STEP_DONE = "/boatsim/step_done"
+#: std_msgs/UInt64MultiArray [K, N, digest]: the clock owner refuses dynamics process K of N,
+#: whose scenario is not its own (``digest``: the owner's); that process stops, exit 2.
+STEP_REFUSED = "/boatsim/step_refused"
 #: boat_msgs/FleetState: every boat's pose and twist in one message (simulation.fleet_state).
 FLEET_STATE = "/boatsim/fleet_state"
 #: diagnostic_msgs/DiagnosticArray, one status per boat.

@@ -138,6 +138,26 @@ def test_processes_started_apart_join_the_barrier(boatsim, fleet, tmp_path):
     assert "owning the clock of 2 dynamics process(es)" in ocean.output()
 
 
+def test_a_process_started_with_another_scenario_is_refused(boatsim, fleet):
+    """Before: it ran (two nodes named boat_dynamics_alpha) and the clock owner waited for
+    ever. Now the owner refuses it by its scenario digest, and it exits 2 saying why."""
+    other = fleet / "other.yaml"
+    other.write_text(FLEET.replace("density: 450.0", "density: 460.0"))
+    common = ("--fast", "--duration", "3")
+    ocean = boatsim("run", str(fleet / "fleet.yaml"), *common, "--shards", "2", "--only",
+                    "ocean", name="ocean")
+    stray = boatsim("run", str(other), *common, "--only", "shard", "1/2", name="stray")
+    assert stray.wait(timeout=120) == 2, stray.output()
+    assert "the clock owner refused this process: its scenario" in stray.output()
+    assert "Traceback" not in stray.output()
+    deadline = time.monotonic() + 30
+    while "refusing dynamics process 1/2" not in ocean.output():
+        assert time.monotonic() < deadline, ocean.output()
+        time.sleep(0.1)
+    assert ocean.proc.poll() is None  # still waiting for a shard 1/2 of its own scenario
+    ocean.stop()
+
+
 def _pids(sim):
     """The pids the parent printed: the ocean's, then each shard's."""
     deadline = time.monotonic() + 60

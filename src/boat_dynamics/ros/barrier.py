@@ -10,6 +10,10 @@ publishes /clock as the slowest process completes a step and grants at most
 once every process together has received as many commands as the replayer sent: each
 command then takes effect at the same step as in one process.
 
+Each report carries the process's scenario digest (``Scenario.digest``); the owner refuses
+a process whose digest is not its own on /boatsim/step_refused, and that process stops (a
+shard started with another scenario once ran beside the rest, and the owner waited for ever).
+
 Reports are cumulative and repeated while a process waits, the grant is latched: a lost or
 late message delays, never breaks, the barrier. Each side spins a node of its own, so waiting
 for the barrier does not rebuild the wait set of a fleet's command subscriptions.
@@ -75,15 +79,21 @@ class StepMember(Node):
     Args:
         index: this process's place, 0 .. count - 1.
         count: the dynamics processes of the run.
+        digest: its scenario's digest (16 hex digits, ``Scenario.digest``).
         context: the rclpy context (DDS participant) to live in; None = the default one.
     """
 
-    def __init__(self, index: int, count: int, context: Context | None = None) -> None:
+    def __init__(self, index: int, count: int, digest: str,
+                 context: Context | None = None) -> None:
         super().__init__(f"boatsim_step_{index}", context=context)
-        self.index, self.count = index, count
+        self.index, self.count, self.digest = index, count, int(digest or "0", 16)
         self.granted = 0  # steps this process may have taken
+        #: The clock owner's digest once it refused this process (another scenario), or None.
+        self.refused_by: str | None = None
         self._done = self.create_publisher(UInt64MultiArray, names.STEP_DONE, STEP_DONE_QOS)
         self.create_subscription(UInt64, names.STEP_GRANT, self._on_grant, STEP_GRANT_QOS)
+        self.create_subscription(UInt64MultiArray, names.STEP_REFUSED, self._on_refused,
+                                 STEP_DONE_QOS)
         self.executor_ = SingleThreadedExecutor(context=self.context)
         self.executor_.add_node(self)
         self._last: tuple[int, int] | None = None
@@ -91,6 +101,12 @@ class StepMember(Node):
 
     def _on_grant(self, msg: UInt64) -> None:
         self.granted = max(self.granted, int(msg.data))
+
+    def _on_refused(self, msg: UInt64MultiArray) -> None:
+        if len(msg.data) == 3 and (int(msg.data[0]), int(msg.data[1])) == (self.index,
+                                                                            self.count):
+            if int(msg.data[2]) != self.digest:
+                self.refused_by = f"{int(msg.data[2]):016x}"
 
     def stepped(self, steps: int, commands: int) -> None:
         """After a step: report every REPORT_EVERY steps and when the grant is used up.
@@ -104,7 +120,8 @@ class StepMember(Node):
 
     def report(self, steps: int, commands: int) -> None:
         """Say that ``steps`` steps are taken and ``commands`` commands received."""
-        self._done.publish(uint64_multi_array_cdr((self.index, self.count, steps, commands)))
+        self._done.publish(uint64_multi_array_cdr((self.index, self.count, steps, commands,
+                                                   self.digest)))
         self._last = (steps, commands)
         now = time.monotonic()
         self._next_repeat = now + _REPEAT_PERIOD
@@ -122,7 +139,7 @@ class StepMember(Node):
             serve: the process's other callbacks (commands, parameters), called every round.
         """
         while self.granted <= steps:
-            if stop.is_set():
+            if stop.is_set() or self.refused_by is not None:
                 return False
             self.executor_.spin_once(timeout_sec=0.01)
             serve()
@@ -137,6 +154,8 @@ class StepConductor(Node):
 
     Args:
         count: the dynamics processes to wait for.
+        digest: the owner's scenario digest (16 hex digits); a process with another is
+            refused.
         clock: the owner's simulation clock (advanced by :meth:`completed`).
         duration: s of simulation to grant, None = unbounded.
         lockstep: grant only as far as a replayer grants on /boatsim/lockstep.
@@ -144,10 +163,12 @@ class StepConductor(Node):
         context: the rclpy context (DDS participant) to live in; None = the default one.
     """
 
-    def __init__(self, count: int, clock: SimClock, duration: float | None, lockstep: bool,
-                 tap: Tap | None = None, context: Context | None = None) -> None:
+    def __init__(self, count: int, digest: str, clock: SimClock, duration: float | None,
+                 lockstep: bool, tap: Tap | None = None, context: Context | None = None
+                 ) -> None:
         super().__init__(names.CLOCK_NODE, context=context)
         self.count, self.clock, self.lockstep = count, clock, lockstep
+        self.digest = int(digest or "0", 16)
         #: The step count at which the run ends (inf = none).
         self.end = math.inf if duration is None else round(duration * clock.rate_hz)
         self._reports: dict[int, tuple[int, int]] = {}  # process -> (steps, commands)
@@ -159,6 +180,9 @@ class StepConductor(Node):
         self._clock_template = clock_template()
         self.create_subscription(UInt64MultiArray, names.STEP_DONE, self._on_done,
                                  STEP_DONE_QOS)
+        self._refuse = self.create_publisher(UInt64MultiArray, names.STEP_REFUSED,
+                                             STEP_DONE_QOS)
+        self._refused: set[tuple[int, int]] = set()  # (process, digest) logged
         if lockstep:
             self.create_subscription(Float64MultiArray, names.LOCKSTEP, self._on_lockstep,
                                      COMMAND_QOS)
@@ -172,9 +196,12 @@ class StepConductor(Node):
         self._refused_grant = False  # a bad /boatsim/lockstep grant was logged
 
     def _on_done(self, msg: UInt64MultiArray) -> None:
-        if len(msg.data) != 4:
+        if len(msg.data) != 5:
             return
-        index, count, steps, commands = (int(v) for v in msg.data)
+        index, count, steps, commands, digest = (int(v) for v in msg.data)
+        if digest != self.digest:
+            self._refuse_process(index, count, digest)
+            return
         if count != self.count or index >= count:
             if count not in self._wrong:
                 self._wrong.add(count)
@@ -189,6 +216,16 @@ class StepConductor(Node):
             self._silent.discard(index)
             self.get_logger().info(f"dynamics process {index}/{count} reports again (at step "
                                    f"{steps}; the run is at step {self.done()}): going on")
+
+    def _refuse_process(self, index: int, count: int, digest: int) -> None:
+        """Tell process ``index`` of ``count`` it runs another scenario; log it once."""
+        self._refuse.publish(uint64_multi_array_cdr((index, count, self.digest)))
+        if (index, digest) not in self._refused:
+            self._refused.add((index, digest))
+            self.get_logger().error(
+                f"refusing dynamics process {index}/{count}: its scenario (digest "
+                f"{digest:016x}) is not this run's ({self.digest:016x}); start every "
+                "process of a run with the same scenario file")
 
     def _on_lockstep(self, msg: Float64MultiArray) -> None:
         try:

@@ -398,7 +398,8 @@ class _Loop:
             if fast and options.shard is not None:
                 # in the dynamics node's participant: they never talk to each other, and a
                 # participant of its own made 100 boats over 2 shards 2.5x slower (measured)
-                self.member = StepMember(*options.shard, context=self.dynamics.context)
+                self.member = StepMember(*options.shard, scenario.digest,
+                                         context=self.dynamics.context)
                 self.nodes.append(self.member)
         self.logger = (self.dynamics if self.dynamics is not None else self.nodes[0]).get_logger()
         if self.dds_note is not None and len(scenario.boats) > _QUADRATIC_START:
@@ -423,8 +424,8 @@ class _Loop:
                                environment=scenario.environment)
         self.nodes.append(self.ocean)
         if self.fast and options.shards:
-            self.conductor = StepConductor(options.shards, clock, self.duration,
-                                           options.lockstep, tap,
+            self.conductor = StepConductor(options.shards, scenario.digest, clock,
+                                           self.duration, options.lockstep, tap,
                                            context=self.ocean.context)  # as the member
             self.nodes.append(self.conductor)
 
@@ -449,8 +450,9 @@ class _Loop:
         """Make the nodes, wait for the sea state, step until the duration or a stop.
 
         Returns:
-            The exit status: 0, 1 when no wave field arrived, :data:`EXIT_STOPPED` when a boat
-            was stopped, its state diverged.
+            The exit status: 0, 1 when no wave field arrived, 2 when the clock owner refused
+            this process (another scenario), :data:`EXIT_STOPPED` when a boat was stopped,
+            its state diverged.
         """
         self._make_nodes()
         if self.options.ready_fd is not None and not self._handshake():
@@ -489,6 +491,12 @@ class _Loop:
                 if time.monotonic() > next_type_check:
                     next_type_check = time.monotonic() + _TYPE_CHECK_PERIOD
                     self.dynamics.check_command_types()
+        if self.member is not None and self.member.refused_by is not None:
+            self.logger.error(f"exit 2: the clock owner refused this process: its scenario "
+                              f"{self.scenario.source} (digest {self.scenario.digest}) is not "
+                              f"the run's (digest {self.member.refused_by}); start every "
+                              "process of a run with the same scenario file")
+            return 2
         if self.dynamics is not None:
             self.display.update(self.dynamics, self.clock.t, force=True)
             if self.dynamics.stopped:

@@ -36,6 +36,7 @@ __all__ = [
     "ScenarioError",
     "SimulationSettings",
     "default_scenario_path",
+    "document_digest",
     "load_scenario",
     "parse_scenario",
 ]
@@ -162,4 +163,16 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
                  f"{hull.length:g} m x {hull.beam:g} m x {hull.height:g} m box, {mass:,.0f} kg) "
                  "in the root namespace",)
     return Scenario(simulation=sim, sea=sea, boats=boats, source=source,
-                    environment=environment, notes=notes)
+                    environment=environment, notes=notes, digest=document_digest(d))
+
+
+def document_digest(data: Any) -> str:
+    """16 hex digits of the SHA-256 of a parsed YAML document (keys sorted; layout ignored)."""
+    import hashlib
+    import json
+
+    try:
+        text = json.dumps(data, sort_keys=True, separators=(",", ":"), default=repr)
+    except TypeError:  # keys of mixed types cannot be sorted
+        text = repr(data)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]

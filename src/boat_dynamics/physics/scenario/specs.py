@@ -136,7 +136,9 @@ class Scenario:
     """A whole run: settings, the sea, the boats, and the current and wind.
 
     ``notes``: what the reader assumed that the file did not say (a default boat for a file
-    with no ``boats``), for the user to be told.
+    with no ``boats``), for the user to be told. ``digest``: 16 hex digits of the SHA-256 of
+    the document as read (keys sorted, comments and layout left out): the processes of one run
+    compare it (the step barrier), so they run one scenario.
     """
 
     simulation: SimulationSettings
@@ -145,3 +147,4 @@ class Scenario:
     source: str = "<scenario>"
     environment: Environment = field(default_factory=Environment)
     notes: tuple[str, ...] = ()
+    digest: str = ""
