@@ -505,3 +505,28 @@ def test_a_killed_run_loses_at_most_its_last_second_after_reindex(boatsim, probe
     assert stamps[-1] / 1e9 > t_seen - 1.0, (stamps[-1] / 1e9, t_seen)
     assert abs(counts["/odom"] - counts["/clock"] / 2) <= 2  # odom at 50 Hz, clock at 100
     assert cli_run("plot", str(bag), "-o", str(tmp_path / "p.png")).returncode == 0
+
+
+def test_a_full_disk_stops_the_recording_and_the_run_goes_on(tmp_path):
+    """A file-size limit (RLIMIT_FSIZE, EFBIG) stands in for a full disk: before, two
+    tracebacks and the run died; now one error line, the run reaches its end, exit 1."""
+    import resource
+
+    def small_files():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (256 * 1024, 256 * 1024))
+
+    bag = tmp_path / "bag"
+    out = subprocess.run([sys.executable, "-m", "boat_dynamics", "run", "--fast", "--duration",
+                          "30", "--record", str(bag)], capture_output=True, text=True,
+                         timeout=300, preexec_fn=small_files)
+    assert out.returncode == 1, out.stderr
+    assert "Traceback" not in out.stderr
+    assert out.stderr.count("recording stopped at bag time") == 2  # the log, the last word
+    assert "the simulation goes on" in out.stderr
+    assert "t    30.00 s" in out.stderr  # the status line: it ran to its end
+    assert cli_run("reindex", str(bag)).returncode == 0
+    with AnyReader([bag]) as reader:
+        clock = [c for c in reader.connections if c.topic == "/clock"]
+        stamps = [t for _, t, _ in reader.messages(connections=clock)]
+    assert stamps == [k * 10_000_000 for k in range(len(stamps))] and 0 < len(stamps) < 3000

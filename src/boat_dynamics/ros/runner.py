@@ -251,6 +251,8 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         loop.participants.shutdown()
         rclpy.try_shutdown()
         restore_signals()
+    if bag is not None and bag.failed is not None and code == 0:
+        code = 1  # the recording asked for is incomplete
     if loop.abandoned:  # see _Loop.close: destroying the endpoints would take minutes
         sys.stdout.flush()
         sys.stderr.flush()
@@ -349,6 +351,7 @@ class _Loop:
                  bag: BagWriter | None, stop: threading.Event, display: _Status) -> None:
         self.scenario, self.options, self.clock, self.fast = scenario, options, clock, fast
         self.bag, self.stop, self.display = bag, stop, display
+        self._told_bag_failed = False  # a failed bag write was logged
         self.duration = (options.duration if options.duration is not None
                          else scenario.simulation.duration)
         self.executor = SingleThreadedExecutor()
@@ -666,8 +669,13 @@ class _Loop:
         Returns:
             When it is due next.
         """
-        if self.recorder is None or time.monotonic() <= next_discovery:
+        if self.bag is None or time.monotonic() <= next_discovery:
             return next_discovery
+        if self.bag.failed is not None and not self._told_bag_failed:
+            self._told_bag_failed = True  # once; the simulation goes on
+            self.logger.error(f"{self.bag.stopped_line()}; the simulation goes on")
+        if self.recorder is None:
+            return time.monotonic() + _DISCOVERY_PERIOD
         self.recorder.discover()
         self.bag.flush_due(self.clock.stamp_ns())  # a quiet second is on disk too
         return time.monotonic() + _DISCOVERY_PERIOD
@@ -749,8 +757,11 @@ class _Loop:
         if self.bag is not None:
             self.bag.close()
             total = sum(self.bag.counts.values())
-            print(f"boatsim: wrote {total} messages on {len(self.bag.counts)} topics to "
-                  f"{self.bag.path}", file=status)
+            if self.bag.failed is not None:
+                print(f"boatsim: error: {self.bag.stopped_line()}", file=status)
+            else:
+                print(f"boatsim: wrote {total} messages on {len(self.bag.counts)} topics to "
+                      f"{self.bag.path}", file=status)
         endpoints = sum(1 for n in self.nodes for _ in (*n.publishers, *n.subscriptions))
         for barrier in (self.member, self.conductor):
             if barrier is not None:

@@ -90,6 +90,9 @@ class _CrashSafeMcap(McapWriter):
         if self.chunk.msgs and now_ns - self.chunk.message_start_time >= CHUNK_SPAN_NS:
             self.close_chunk()
 
+    #: File offset where the last chunk handed to the operating system (and its indexes) end.
+    whole_until = 0
+
     def close_chunk(self) -> None:
         start, crc = self.bio.tell(), zlib.crc32(self.chunk.bio.getvalue())
         super().close_chunk()
@@ -98,6 +101,22 @@ class _CrashSafeMcap(McapWriter):
         self.bio.write(struct.pack("<I", crc))
         self.bio.seek(end)
         self.bio.flush()  # to the operating system: survives the process, not a power cut
+        self.whole_until = end
+
+    def abandon(self) -> None:
+        """Stop writing after a failed write: cut the file after its last whole chunk.
+
+        What the buffer still holds is dropped (flushing it failed); the file is then a killed
+        recording's, which :func:`reindex` reads, and the cut frees what the partial chunk
+        took on a full disk.
+        """
+        fd = self.bio.fileno()
+        for action in (lambda: os.ftruncate(fd, self.whole_until), lambda: os.close(fd),
+                       self.bio.close):  # close: its flush fails on the closed descriptor
+            try:
+                action()
+            except (OSError, ValueError):
+                pass
 
     def close(self, version: int, metadata: str) -> None:
         super().close(version, metadata.replace(_ROSBAGS_DISTRO, f"ros_distro: {ROS_DISTRO}"))
@@ -136,6 +155,19 @@ class JazzyWriter(Writer):
         """Write out the pending chunk now (its messages survive a kill from here on)."""
         if self.storage is not None and self.storage.chunk.msgs:
             self.storage.close_chunk()
+
+    def abandon(self) -> None:
+        """Stop after a failed write: the file up to its last whole chunk, the lock released.
+
+        ``boatsim reindex`` makes the bag readable (:meth:`_CrashSafeMcap.abandon`).
+        """
+        if self.storage is not None:
+            self.storage.abandon()
+            self.storage = None
+        if self._lock is not None:
+            (self.path / LOCK_NAME).unlink(missing_ok=True)
+            os.close(self._lock)
+            self._lock = None
 
     def close(self) -> None:
         """Write the summary and metadata.yaml (``ros_distro: jazzy``)."""

@@ -58,7 +58,10 @@ class BagWriter:
 
     Crash-safe: a chunk is written out once it spans half a second of bag time
     (:class:`boat_dynamics.tools.bagfile.JazzyWriter`); call :meth:`flush_due` when no message
-    may come for a while.
+    may come for a while. A write that fails (a full disk, a file-size limit, an I/O error)
+    stops the recording, not the caller: :attr:`failed` says why, :attr:`dropped` counts the
+    messages not written since, and the file keeps every whole chunk before (a killed
+    recording's, which ``boatsim reindex`` makes readable).
 
     Args:
         path: directory to create; must not exist.
@@ -83,6 +86,30 @@ class BagWriter:
         self._connections: dict[str, object] = {}
         self.counts: dict[str, int] = {}
         self._closed = False
+        #: Why the recording stopped (a failed write), or None while it records.
+        self.failed: str | None = None
+        #: Messages not written since it stopped.
+        self.dropped = 0
+        #: Bag time (ns) of the last message handed to the writer before it stopped.
+        self.last_ns = 0
+
+    def stopped_line(self) -> str:
+        """What to tell the user once the recording has stopped on a failed write."""
+        return (f"recording stopped at bag time {self.last_ns / 1e9:.3f} s: {self.failed}; "
+                f"{self.dropped} message(s) not written since; {self.path} keeps every whole "
+                "chunk before (at most the last second before it is lost): `boatsim reindex "
+                f"{self.path}` makes it readable once the disk has room")
+
+    def _guard(self, action: Callable[[], None]) -> bool:
+        """Run a writing ``action``; on an OSError stop the recording (module docstring)."""
+        try:
+            action()
+        except OSError as exc:
+            self.failed = f"writing {self.path} failed: {exc.strerror or exc}"
+            self._closed = True
+            self._writer.abandon()
+            return False
+        return True
 
     def write(self, topic: str, msgtype: str, data: bytes, stamp_ns: int,
               qos: QoSProfile | None = None) -> None:
@@ -93,6 +120,9 @@ class BagWriter:
         """
         if topic in self.exclude:
             return
+        if self._closed:
+            self.dropped += self.failed is not None
+            return
         conn = self._connections.get(topic)
         if conn is None:
             offered = (_bag_qos(qos),) if qos is not None else ()
@@ -100,18 +130,21 @@ class BagWriter:
                                                offered_qos_profiles=offered)
             self._connections[topic] = conn
             self.counts[topic] = 0
-        self._writer.write(conn, stamp_ns, data)
-        self.counts[topic] += 1
+        if self._guard(lambda: self._writer.write(conn, stamp_ns, data)):
+            self.counts[topic] += 1
+            self.last_ns = stamp_ns
+        else:
+            self.dropped += 1
 
     def flush_due(self, now_ns: int) -> None:
         """Write out the pending chunk if it is CHUNK_SPAN_NS (0.5 s) older than ``now_ns``."""
         if not self._closed:
-            self._writer.flush_due(now_ns)
+            self._guard(lambda: self._writer.flush_due(now_ns))
 
     def flush(self) -> None:
         """Write out the pending chunk now, whatever its span (before a snapshot)."""
         if not self._closed:
-            self._writer.flush()
+            self._guard(lambda: self._writer.flush())
 
     def tap(self, stamp_ns: Callable[[], int]) -> Tap:
         """A :class:`Tap` writing into this bag, stamped by ``stamp_ns()`` (ns)."""
@@ -121,9 +154,8 @@ class BagWriter:
 
     def close(self) -> None:
         """Finalize the bag (metadata.yaml and MCAP summary). Safe to call twice."""
-        if not self._closed:
+        if not self._closed and self._guard(self._writer.close):
             self._closed = True
-            self._writer.close()
 
 
 class TopicRecorder:
@@ -269,6 +301,9 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
                 status.flush()
                 next_status = now + (0.5 if tty else 5.0)
             executor.spin_once(timeout_sec=0.05)
+            if bag.failed is not None:
+                node.get_logger().error(bag.stopped_line())
+                return 1
         return 0
     finally:
         bag.close()

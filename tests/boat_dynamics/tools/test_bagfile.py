@@ -411,3 +411,39 @@ def test_reindex_exit_status_tells_a_cut_tail_from_damage_in_the_middle(tmp_path
     assert main(["reindex", str(tmp_path / "bag")]) == 1
     err = capsys.readouterr().err
     assert f"damaged in the middle (bytes {start}-" in err and "of the 330 messages" in err
+
+
+_FULL_DISK = textwrap.dedent("""
+    import resource, signal, sys
+    from boat_dynamics.tools.recording import BagWriter
+    from boat_msgs_py.typestore import typestore
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails: EFBIG
+    resource.setrlimit(resource.RLIMIT_FSIZE, (48 * 1024, 48 * 1024))
+    store = typestore()
+    Clock, Time = store.types["rosgraph_msgs/msg/Clock"], store.types["builtin_interfaces/msg/Time"]
+    bag = BagWriter(sys.argv[1])
+    for i in range(3000):
+        t = i * {step}
+        data = store.serialize_cdr(Clock(Time(t // 10**9, t % 10**9)), "rosgraph_msgs/msg/Clock")
+        bag.write("/clock", "rosgraph_msgs/msg/Clock", bytes(data), t)
+    bag.close()
+    print(bag.last_ns, bag.dropped)
+    print(bag.stopped_line())
+""").format(step=STEP_NS)
+
+
+def test_a_full_disk_stops_the_recording_not_the_writer_and_keeps_what_was_whole(tmp_path):
+    """A file-size limit (RLIMIT_FSIZE: EFBIG) stands in for a full disk (ENOSPC): both are
+    an OSError from a write; before, it went up through the publisher and ended the run."""
+    out = subprocess.run([sys.executable, "-c", _FULL_DISK, str(tmp_path / "bag")],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    last, dropped = (int(v) for v in out.stdout.split("\n")[0].split())
+    assert 0 < last < 2999 * STEP_NS and dropped == 2999 - last // STEP_NS
+    assert "recording stopped at bag time" in out.stdout and "File too large" in out.stdout
+    assert (tmp_path / "bag" / "bag.mcap").stat().st_size <= 48 * 1024
+    assert not (tmp_path / "bag" / LOCK_NAME).exists()
+    report = reindex(tmp_path / "bag")  # the file is a killed recording's: every whole chunk
+    stamps = _stamps(tmp_path / "bag")
+    assert stamps == [i * STEP_NS for i in range(len(stamps))]
+    assert last - stamps[-1] < 1_000_000_000 and report.dropped_bytes == 0
