@@ -587,6 +587,7 @@ def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
     from boat_dynamics.physics.pipeline import InitError
     from boat_dynamics.physics.scenario import default_scenario_path
+    from boat_dynamics.process import sweep_temporaries
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
 
@@ -595,6 +596,7 @@ def _run(args: argparse.Namespace) -> int:
         return 2
     if args.verb == "_node":
         return _run_node(args, scenario, path)
+    sweep_temporaries()  # what runs killed before could not remove
     for note in scenario.notes:  # the parent says it once
         print(f"boatsim: warning: {path}: {note}", file=sys.stderr)
     if args.lockstep and not args.fast:

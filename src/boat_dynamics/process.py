@@ -11,6 +11,7 @@ from __future__ import annotations
 import ctypes
 import mmap
 import os
+import shutil
 import signal
 import struct
 import subprocess
@@ -21,8 +22,9 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-__all__ = ["STOP_SIGNALS", "SharedTime", "die_with_parent", "keep_freed_memory", "start_child",
-           "stop_on_signals", "stop_processes", "watch_stdin"]
+__all__ = ["STOP_SIGNALS", "SharedTime", "die_with_parent", "keep_freed_memory", "pid_alive",
+           "start_child", "stop_on_signals", "stop_processes", "sweep_temporaries",
+           "temporary_prefix", "watch_stdin"]
 
 #: prctl option: the signal a process gets when its parent dies (linux/prctl.h).
 _PR_SET_PDEATHSIG = 1
@@ -155,6 +157,51 @@ def keep_freed_memory() -> bool:
                 and mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD))
 
 
+def _temporary_dirs() -> list[Path]:
+    """Where boatsim's temporary files and folders live: the temp directory, and /dev/shm."""
+    dirs = [Path(tempfile.gettempdir())]
+    return [*dirs, Path("/dev/shm")] if os.path.isdir("/dev/shm") else dirs
+
+
+def temporary_prefix(kind: str) -> str:
+    """``boatsim-KIND-PID-``: the name of a temporary of this process starts so.
+
+    The pid lets :func:`sweep_temporaries` tell a dead process's leftovers from a live one's.
+    """
+    return f"boatsim-{kind}-{os.getpid()}-"
+
+
+def pid_alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists (another user's counts as alive)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return pid > 0
+
+
+def sweep_temporaries() -> list[Path]:
+    """Remove the temporaries (:func:`temporary_prefix`) of boatsim processes that are gone.
+
+    A process killed with SIGKILL (or an OOM kill) cannot remove its snapshot folder or its
+    shared-time file; the next boatsim run does. Returns what was removed.
+    """
+    removed = []
+    for folder in _temporary_dirs():
+        for p in folder.glob("boatsim-*-*-*"):
+            pid = p.name.split("-")[2]
+            if not pid.isdigit() or pid_alive(int(pid)):
+                continue
+            if p.is_dir():
+                shutil.rmtree(p, ignore_errors=True)
+            else:
+                p.unlink(missing_ok=True)
+            removed.append(p)
+    return removed
+
+
 class SharedTime:
     """One float64 (a time, s) in a memory-mapped file that another process reads.
 
@@ -173,7 +220,7 @@ class SharedTime:
         self._owner = path is None
         if self._owner:
             shm = "/dev/shm" if os.path.isdir("/dev/shm") else None
-            fd, name = tempfile.mkstemp(prefix="boatsim-time-", dir=shm)
+            fd, name = tempfile.mkstemp(prefix=temporary_prefix("time"), dir=shm)
             os.write(fd, bytes(self._FORMAT.size))
             self.path = Path(name)
         else:

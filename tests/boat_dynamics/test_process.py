@@ -115,3 +115,75 @@ def test_stop_on_signals_puts_back_the_previous_handlers_and_leaves_no_thread_or
     assert not relay.is_alive()
     assert {sig: signal.getsignal(sig) for sig in before} == before
     assert set(os.listdir("/proc/self/fd")) == fds
+
+
+def _dead_pid() -> int:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_the_next_run_sweeps_what_a_killed_run_left_in_the_temp_directory(tmp_path, monkeypatch):
+    import tempfile
+
+    from boat_dynamics.process import SharedTime, sweep_temporaries, temporary_prefix
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    dead = _dead_pid()
+    (tmp_path / f"boatsim-snapshots-{dead}-abc").mkdir()
+    (tmp_path / f"boatsim-snapshots-{dead}-abc" / "shard-0.npz").write_bytes(b"x")
+    (tmp_path / f"boatsim-time-{dead}-xyz").write_bytes(bytes(8))
+    ours = tmp_path / f"{temporary_prefix('snapshots')}live"
+    ours.mkdir()
+    other = tmp_path / "boatsim-test-chromium"  # not ours: no pid in its name
+    other.mkdir()
+    shared = SharedTime()  # in /dev/shm where there is one: named with our pid
+    try:
+        assert shared.path.name.startswith(temporary_prefix("time"))
+        removed = sweep_temporaries()
+        assert sorted(p.name for p in removed) == [f"boatsim-snapshots-{dead}-abc",
+                                                   f"boatsim-time-{dead}-xyz"]
+        assert ours.exists() and other.exists() and shared.path.exists()
+    finally:
+        shared.close()
+
+
+def test_the_next_run_merges_the_bags_a_killed_parent_left(tmp_path):
+    import io
+
+    from boat_dynamics.ros.processes import merge_orphaned_parts
+    from boat_dynamics.tools.bagfile import JazzyWriter
+    from boat_dynamics.tools.bags import read_bag
+    from boat_msgs_py.typestore import typestore
+
+    store = typestore()
+    clock, time_ = store.types["rosgraph_msgs/msg/Clock"], store.types[
+        "builtin_interfaces/msg/Time"]
+
+    def part(path, steps):
+        writer = JazzyWriter(path)
+        writer.open()
+        conn = writer.add_connection("/clock", "rosgraph_msgs/msg/Clock", typestore=store)
+        for k in steps:
+            data = store.serialize_cdr(clock(time_(0, k * 10_000_000)), "rosgraph_msgs/msg/Clock")
+            writer.write(conn, k * 10_000_000, bytes(data))
+        writer.close()
+
+    dead = _dead_pid()
+    for name in ("bag", "taken"):
+        parts = tmp_path / f".{name}.parts-{dead}"
+        parts.mkdir()
+        part(parts / "ocean", range(0, 50, 2))
+        part(parts / "shard-0", range(1, 50, 2))
+    (tmp_path / "taken").mkdir()  # its name was used since: merged beside it
+    live = tmp_path / f".live.parts-{os.getpid()}"  # a run still going: left alone
+    live.mkdir()
+    status = io.StringIO()
+
+    merged = merge_orphaned_parts(tmp_path, status)
+
+    assert merged == [tmp_path / "bag", tmp_path / f"taken.recovered-{dead}"]
+    for bag in merged:
+        assert [t for t, _ in read_bag(bag)["/clock"]] == [k * 10_000_000 for k in range(50)]
+    assert not list(tmp_path.glob(f".*.parts-{dead}")) and live.exists()
+    assert f"held the bags of a run killed before it merged them (pid {dead})" in status.getvalue()

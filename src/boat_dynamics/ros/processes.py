@@ -56,12 +56,18 @@ from pathlib import Path
 from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import STOP_SIGNALS, start_child, stop_processes
+from boat_dynamics.process import (
+    STOP_SIGNALS,
+    pid_alive,
+    start_child,
+    stop_processes,
+    temporary_prefix,
+)
 from boat_dynamics.ros.barrier import shard_slice
 from boat_dynamics.ros.runner import EXIT_STOPPED, RunOptions
 from boat_dynamics.tools.recording import RecordError
 
-__all__ = ["run_processes"]
+__all__ = ["merge_orphaned_parts", "run_processes"]
 
 #: Simulation time 0 is this far (s, wall clock) after the last child said ready.
 _GO_AHEAD = 0.5
@@ -293,8 +299,10 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     record = Path(options.record) if options.record else None
     if record is not None and record.exists():  # refused here, before any process starts
         raise RecordError(f"{record} already exists; choose a new directory for the bag")
+    if record is not None:
+        merge_orphaned_parts(record.parent, status)
     parts, recorder = _prepare_recording(record, options)
-    snapshots = (Path(tempfile.mkdtemp(prefix="boatsim-snapshots-"))
+    snapshots = (Path(tempfile.mkdtemp(prefix=temporary_prefix("snapshots")))
                  if options.fast and not options.lockstep else None)
     children = _children(scenario, path, options, parts, snapshots)
     cuts: dict[Path, int] = {}
@@ -358,7 +366,8 @@ def _recording_words(options: RunOptions, recorder: subprocess.Popen | None,
     if recorder is not None:
         return f"; recording to {options.record} (pid {recorder.pid})"
     if parts is not None:
-        return f"; recording to {options.record} (a bag per process, merged at the end)"
+        return (f"; recording to {options.record} (a bag per process in {parts}, merged at "
+                "the end, or by the next run recording in that directory)")
     return ""
 
 
@@ -384,6 +393,35 @@ def _forwarder(signals: list[int], children: list[_Child]) -> Callable[[], bool]
 def _clock_words(options: RunOptions) -> str:
     return ("the ocean's process grants every step, after the replayer's grants (lockstep)"
             if options.lockstep else "the ocean's process grants every step")
+
+
+def merge_orphaned_parts(directory: Path, status: TextIO) -> list[Path]:
+    """Merge the per-process bags that a killed run left in ``directory``; returns the bags.
+
+    A ``run --fast --record BAG`` over processes writes a bag per process into
+    ``.BAG.parts-PID`` and merges them at its end; a parent killed with SIGKILL never does
+    (its children, seeing it gone, close their bags). The next such run in that directory
+    merges them into BAG, or into ``BAG.recovered-PID`` when BAG exists, and says so.
+    """
+    merged = []
+    for parts in sorted(directory.glob(".*.parts-*")):
+        name, _, pid = parts.name[1:].rpartition(".parts-")
+        if not (pid.isdigit() and parts.is_dir()) or pid_alive(int(pid)):
+            continue
+        target = directory / name
+        if target.exists():
+            target = directory / f"{name}.recovered-{pid}"
+        try:
+            _merge_parts(parts, target, status, {})
+        except Exception as exc:  # a damaged part: named, left for the user
+            print(f"boatsim: warning: {parts} holds the bags of a run killed before it merged "
+                  f"them (pid {pid}); merging them failed ({exc}); they are left there",
+                  file=status)
+            continue
+        print(f"boatsim: {parts} held the bags of a run killed before it merged them (pid "
+              f"{pid}): merged into {target}", file=status)
+        merged.append(target)
+    return merged
 
 
 def _merge_parts(parts: Path, record: Path, status: TextIO, cuts: dict[Path, int]) -> None:
