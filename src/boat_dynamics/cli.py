@@ -298,6 +298,9 @@ def _add_view(verbs) -> None:
                       help="HTTP port of the web viewer (default 9090)")
     view.add_argument("--grpc-port", type=_port, default=9876, metavar="N",
                       help="port of the Rerun server the page connects to (default 9876)")
+    view.add_argument("--bind", default="127.0.0.1", metavar="ADDRESS",
+                      help="address the page and the server listen on (default 127.0.0.1: "
+                           "this machine only; 0.0.0.0: every interface)")
     view.add_argument("--wrenches", nargs="*", choices=WRENCH_SOURCES,
                       default=list(DEFAULT_SOURCES), metavar="SOURCE",
                       help="wrench sources drawn as arrows over the centre of mass, a hull "
@@ -323,7 +326,8 @@ def _view(args: argparse.Namespace) -> int:
     if args.save:
         Path(args.save).parent.mkdir(parents=True, exist_ok=True)
     options = ViewOptions(scenario=scenario, save=args.save, web_port=args.web_port,
-                          grpc_port=args.grpc_port, sources=tuple(args.wrenches),
+                          grpc_port=args.grpc_port, bind=args.bind,
+                          sources=tuple(args.wrenches),
                           sea_size=args.sea_size, sea_resolution=args.sea_resolution,
                           duration=args.duration)
     stop = threading.Event()

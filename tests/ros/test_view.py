@@ -81,6 +81,35 @@ def test_a_port_in_use_exits_2_naming_it(tmp_path):
     assert f"port {port} is in use" in out.stderr and "--grpc-port" in out.stderr
 
 
+def _listening(port: int) -> set[str]:
+    """The addresses a TCP socket listens on at ``port`` (Linux: /proc/net/tcp, tcp6)."""
+    found = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        with open(table) as f:
+            for row in f.readlines()[1:]:
+                local, state = row.split()[1], row.split()[3]
+                address, hex_port = local.split(":")
+                if state == "0A" and int(hex_port, 16) == port:
+                    found.add(address)
+    return found
+
+
+def test_the_view_listens_on_this_machine_only_unless_told(bag, boatsim):
+    """Before: its page and its Rerun server listened on every interface (0.0.0.0)."""
+    loopback = "0100007F"  # 127.0.0.1 as /proc/net/tcp writes it
+    for extra, expected in (((), {loopback}), (("--bind", "0.0.0.0"), {"00000000"})):
+        web, grpc = _free_port(), _free_port()
+        view = boatsim("view", str(bag), "--scenario", MULTI, "--web-port", str(web),
+                       "--grpc-port", str(grpc), *extra, name="view")
+        deadline = time.monotonic() + 60
+        while "open http" not in view.output():
+            assert view.proc.poll() is None and time.monotonic() < deadline, view.output()
+            time.sleep(0.2)
+        assert _listening(web) == expected and _listening(grpc) == expected
+        assert view.stop() == 0
+        assert not _listening(web) and not _listening(grpc)  # the server ended with it
+
+
 def _free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

@@ -1,11 +1,13 @@
 """`boatsim view [BAG]`: the boats on the sea in 3-D, in a browser, live or from a bag.
 
 Drawn by Rerun (https://rerun.io, the ``view`` extra: ``pip install 'boatsim[view]'``): this
-process logs the scene (:class:`boat_dynamics.tools.scene.Scene`) to an in-process Rerun
-server and serves Rerun's web viewer, which ships inside the rerun-sdk wheel, from this
-machine: nothing is fetched from the internet and no account is needed (Foxglove's client is
-a hosted web app; its open-source fork would have to be built from npm). ``--save FILE.rrd``
-writes the recording instead (open it with ``rerun FILE.rrd``, also from the extra).
+process logs the scene (:class:`boat_dynamics.tools.scene.Scene`) to a Rerun server, the
+``rerun --serve-web`` of the rerun-sdk wheel started as a child, which also serves Rerun's web
+viewer from this machine: nothing is fetched from the internet and no account is needed
+(Foxglove's client is a hosted web app; its open-source fork would have to be built from npm).
+Both listen on ``--bind`` only, 127.0.0.1 by default (the SDK's in-process servers of Rerun
+0.41 listen on every interface and take no address). ``--save FILE.rrd`` writes the recording
+instead (open it with ``rerun FILE.rrd``, also from the extra).
 
 Live (no BAG): a node subscribes to ``/ocean/wave_field``, to every ``*/odom`` on the graph
 (looked for once a second, so boats of any running simulation appear) and to the wrench
@@ -49,6 +51,8 @@ class ViewOptions:
         save: write the recording to this .rrd file instead of serving it.
         web_port: the web viewer's HTTP port.
         grpc_port: the Rerun server's port (the page connects to it).
+        bind: the address both listen on (127.0.0.1: this machine only; 0.0.0.0: every
+            interface).
         sources: the wrench sources drawn as arrows.
         sea_size: m, side of the sea drawn (at least).
         sea_resolution: m between the sea's grid points.
@@ -60,6 +64,7 @@ class ViewOptions:
     save: str | None = None
     web_port: int = 9090
     grpc_port: int = 9876
+    bind: str = "127.0.0.1"
     sources: tuple[str, ...] = DEFAULT_SOURCES
     sea_size: float = 60.0
     sea_resolution: float = 1.0
@@ -76,8 +81,56 @@ def _rerun():
     return rerun
 
 
-def _scene(options: ViewOptions, status: TextIO) -> tuple[Scene, object, str | None]:
-    """A scene on a new recording, saved or served; (scene, recording, the page's URL)."""
+#: How long the Rerun server may take to listen, s (wall).
+_SERVER_START_TIMEOUT = 30.0
+
+
+def _start_server(options: ViewOptions):
+    """The ``rerun --serve-web`` child, listening on ``options.bind``; dies with us."""
+    import socket
+    import subprocess
+    import tempfile
+
+    from boat_dynamics.process import die_with_parent
+
+    command = [sys.executable, "-m", "rerun", "--serve-web", "--bind", options.bind,
+               "--port", str(options.grpc_port), "--web-viewer-port", str(options.web_port),
+               "--server-memory-limit", "1GiB"]
+    log = tempfile.TemporaryFile()  # its log: read if it fails (a pipe could fill and block)
+    child = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                             stderr=log, preexec_fn=die_with_parent)
+    host = "127.0.0.1" if options.bind in ("0.0.0.0", "::") else options.bind
+    deadline = time.monotonic() + _SERVER_START_TIMEOUT
+    for port in (options.grpc_port, options.web_port):
+        while True:
+            if child.poll() is not None:
+                log.seek(0)
+                words = log.read().decode(errors="replace").split()[-40:]
+                raise ViewError(f"the Rerun server ended at start-up (exit {child.returncode}): "
+                                + " ".join(words))
+            with socket.socket() as probe:
+                if probe.connect_ex((host, port)) == 0:
+                    break
+            if time.monotonic() > deadline:
+                child.kill()
+                child.wait()
+                raise ViewError(f"the Rerun server did not listen on {host}:{port} within "
+                                f"{_SERVER_START_TIMEOUT:g} s")
+            time.sleep(0.05)
+    log.close()  # the child keeps its own descriptor
+    return child, host
+
+
+def _stop_server(child) -> None:
+    """End the Rerun server child (Ctrl-C ended the view)."""
+    from boat_dynamics.process import stop_processes
+
+    if child is not None:
+        stop_processes([child], timeout=5.0)
+
+
+def _scene(options: ViewOptions, status: TextIO) -> tuple[Scene, object, str | None, object]:
+    """A scene on a new recording, saved or served: (scene, recording, page URL, server)."""
     rr = _rerun()
     rec = rr.RecordingStream("boatsim")
     shapes = ({b.name: hull_shape(b.params) for b in options.scenario.boats}
@@ -87,15 +140,16 @@ def _scene(options: ViewOptions, status: TextIO) -> tuple[Scene, object, str | N
     blueprint = scene.blueprint(*_framing(options.scenario))
     if options.save:
         rr.save(options.save, default_blueprint=blueprint, recording=rec)
-        return scene, rec, None
+        return scene, rec, None, None
     for port, what in ((options.grpc_port, "--grpc-port"), (options.web_port, "--web-port")):
-        _check_free(port, what)  # Rerun only logs a taken port, and serves nothing
-    uri = rr.serve_grpc(grpc_port=options.grpc_port, default_blueprint=blueprint,
-                        recording=rec)
-    rr.serve_web_viewer(web_port=options.web_port, open_browser=False, connect_to=uri)
-    url = f"http://localhost:{options.web_port}/?url={quote(uri, safe='')}"
-    print(f"boatsim view: open {url} in a browser (Ctrl-C ends the view)", file=status)
-    return scene, rec, url
+        _check_free(options.bind, port, what)  # Rerun only logs a taken port
+    server, host = _start_server(options)
+    uri = f"rerun+http://{host}:{options.grpc_port}/proxy"
+    rr.connect_grpc(uri, default_blueprint=blueprint, recording=rec)
+    url = f"http://{host}:{options.web_port}/?url={quote(uri, safe='')}"
+    print(f"boatsim view: open {url} in a browser (Ctrl-C ends the view; listening on "
+          f"{options.bind} only)", file=status)
+    return scene, rec, url, server
 
 
 def _framing(scenario: Scenario | None) -> tuple[str | None, float]:
@@ -108,14 +162,14 @@ def _framing(scenario: Scenario | None) -> tuple[str | None, float]:
     return None, 1.2 * float(max(max(abs(v) for v in p) for p in starts)) + 10.0
 
 
-def _check_free(port: int, option: str) -> None:
+def _check_free(address: str, port: int, option: str) -> None:
     """Raise ViewError when ``port`` is taken (another view, another server)."""
     import socket
 
     with socket.socket() as probe:
         probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # a closed view's is free
         try:
-            probe.bind(("0.0.0.0", port))
+            probe.bind((address, port))
         except OSError as exc:
             raise ViewError(f"port {port} is in use ({exc.strerror}): another `boatsim view`? "
                             f"Choose another with {option}") from exc
@@ -159,7 +213,7 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO = sys.stderr,
     events = sorted((stamp, topic, msg) for topic, msgs in messages.items()
                     for stamp, msg in msgs)
     epoch = _stamp_ns(fields[0][1]) if fields else events[0][0]
-    scene, _, url = _scene(options, status)
+    scene, _, url, server = _scene(options, status)
     for stamp, topic, msg in events:
         t = (stamp - epoch) / 1e9
         if topic in boats:
@@ -172,7 +226,10 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO = sys.stderr,
     print(f"boatsim view: {len(events)} messages of {len(boats)} boat(s) from {bag}, "
           f"{events[-1][0] / 1e9 - epoch / 1e9:.1f} s", file=status)
     if url is not None:
-        _serve(stop or threading.Event())
+        try:
+            _serve(stop or threading.Event())
+        finally:
+            _stop_server(server)
     return 0
 
 
@@ -252,7 +309,7 @@ def view_live(options: ViewOptions, status: TextIO = sys.stderr,
     from rclpy.executors import SingleThreadedExecutor
 
     stop = stop or threading.Event()
-    scene, _, _ = _scene(options, status)
+    scene, _, _, server = _scene(options, status)
     context = rclpy.Context()
     rclpy.init(context=context)
     node = rclpy.create_node("boatsim_view", context=context)
@@ -275,8 +332,11 @@ def view_live(options: ViewOptions, status: TextIO = sys.stderr,
         executor.shutdown(timeout_sec=0.1)
         node.destroy_node()
         rclpy.try_shutdown(context=context)
-    if options.save is None and options.duration is not None:
-        print("boatsim view: the view's duration is over; still serving it (Ctrl-C ends)",
-              file=status)
-        _serve(stop)
+    try:
+        if options.save is None and options.duration is not None:
+            print("boatsim view: the view's duration is over; still serving it (Ctrl-C ends)",
+                  file=status)
+            _serve(stop)
+    finally:
+        _stop_server(server)
     return 0
