@@ -12,6 +12,8 @@ from functools import cached_property
 import numpy as np
 
 __all__ = [
+    "MAX_MESH_FILE_BYTES",
+    "MAX_TRIANGLES",
     "BoxHull",
     "HullMesh",
     "HullMeshError",
@@ -273,6 +275,39 @@ def check_mesh(mesh: HullMesh, source: str = "mesh") -> None:
                             "units? Set hull.scale (e.g. 0.001 for a mesh in millimetres)")
 
 
+#: The most triangles a hull mesh may have: the pressure integration costs about 5 k
+#: instructions a triangle a step (3,072 triangles: 16 M), and ``boatsim hydro`` meshes at most
+#: 8,000 panels.
+MAX_TRIANGLES = 100_000
+#: The largest mesh file read, bytes (100,000 triangles: 5 MB of binary STL, about 25 MB of
+#: ASCII STL or OBJ).
+MAX_MESH_FILE_BYTES = 64 * 2**20
+
+
+def _check_size(path: str) -> None:
+    """Refuse a mesh file too large to read, before reading it (a binary STL by its header).
+
+    Raises:
+        HullMeshError: over :data:`MAX_MESH_FILE_BYTES`, or a binary STL declaring over
+            :data:`MAX_TRIANGLES` triangles.
+    """
+    import os
+
+    try:
+        size = os.path.getsize(path)
+        with open(path, "rb") as f:
+            head = f.read(84)
+    except OSError as exc:
+        raise HullMeshError(f"{path}: cannot read a triangle mesh ({exc.strerror})") from exc
+    if size > MAX_MESH_FILE_BYTES:
+        raise HullMeshError(f"{path}: {size:,} bytes; a hull mesh file may have at most "
+                            f"{MAX_MESH_FILE_BYTES:,} ({MAX_TRIANGLES:,} triangles)")
+    declared = int.from_bytes(head[80:84], "little") if len(head) == 84 else 0
+    if size == 84 + 50 * declared and declared > MAX_TRIANGLES:  # a binary STL's count
+        raise HullMeshError(f"{path}: declares {declared:,} triangles; a hull mesh may have "
+                            f"at most {MAX_TRIANGLES:,}")
+
+
 def load_mesh(path: str, scale: float = 1.0) -> HullMesh:
     """Read an STL or OBJ hull with trimesh, scale it, centre its bounding box, check it.
 
@@ -285,6 +320,7 @@ def load_mesh(path: str, scale: float = 1.0) -> HullMesh:
     """
     import trimesh  # imported here: only mesh files need it
 
+    _check_size(path)
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for bad files
@@ -293,6 +329,9 @@ def load_mesh(path: str, scale: float = 1.0) -> HullMesh:
     faces = np.asarray(loaded.faces, dtype=np.int64)
     if vertices.size == 0:
         raise HullMeshError(f"{path}: has no triangles")
+    if len(faces) > MAX_TRIANGLES:
+        raise HullMeshError(f"{path}: {len(faces):,} triangles; a hull mesh may have at most "
+                            f"{MAX_TRIANGLES:,}")
     # merge coincident vertices (STL stores each triangle's corners separately)
     rounded = np.round(vertices / max(float(np.ptp(vertices)), 1e-9) * 1e9).astype(np.int64)
     _, first, inverse = np.unique(rounded, axis=0, return_index=True, return_inverse=True)

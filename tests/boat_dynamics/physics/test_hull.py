@@ -71,6 +71,31 @@ def test_unreadable_file_is_refused(tmp_path):
         load_mesh(str(bad))
 
 
+def test_a_mesh_too_large_is_refused_before_it_is_read(tmp_path):
+    """Before: a 10 M-triangle STL took 5.1 GB, then a traceback."""
+    import struct
+    import tracemalloc
+
+    from boat_dynamics.physics.hull import MAX_MESH_FILE_BYTES, MAX_TRIANGLES
+
+    huge = tmp_path / "huge.stl"  # 10 M triangles' size, sparse: no disk used
+    with open(huge, "wb") as f:
+        f.write(b"\0" * 80 + struct.pack("<I", 10_000_000))
+        f.truncate(84 + 50 * 10_000_000)
+    many = tmp_path / "many.stl"  # a whole binary STL of 120,000 (zero) triangles, 6 MB
+    many.write_bytes(b"\0" * 80 + struct.pack("<I", 120_000) + bytes(50 * 120_000))
+    tracemalloc.start()
+    try:
+        with pytest.raises(HullMeshError, match=f"at most {MAX_MESH_FILE_BYTES:,}"):
+            load_mesh(str(huge))
+        with pytest.raises(HullMeshError, match=f"declares 120,000 triangles.*{MAX_TRIANGLES:,}"):
+            load_mesh(str(many))
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 1_000_000  # neither was read
+
+
 def test_inertia_tensor_of_a_turned_box_is_the_turned_diagonal():
     from boat_dynamics.physics.rigid_body import quat_from_euler, rotation_matrix
 

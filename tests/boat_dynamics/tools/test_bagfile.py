@@ -447,3 +447,34 @@ def test_a_full_disk_stops_the_recording_not_the_writer_and_keeps_what_was_whole
     stamps = _stamps(tmp_path / "bag")
     assert stamps == [i * STEP_NS for i in range(len(stamps))]
     assert last - stamps[-1] < 1_000_000_000 and report.dropped_bytes == 0
+
+
+def test_a_chunk_declaring_a_huge_size_is_damage_not_an_allocation(tmp_path):
+    """A compressed-chunk bomb: a zstd chunk whose uncompressed size says 1 TiB."""
+    import tracemalloc
+
+    from rosbags.rosbag2 import CompressionFormat, CompressionMode
+
+    store = typestore()
+    writer = Writer(tmp_path / "zstd", version=9, storage_plugin=StoragePlugin.MCAP)
+    writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
+    with writer:
+        conn = writer.add_connection("/clock", CLOCK, typestore=store)
+        for i in range(40_000):  # rosbags closes a chunk at 1 MiB: 2 chunks
+            writer.write(conn, i * STEP_NS, _clock(i * STEP_NS))
+    path = tmp_path / "zstd" / "zstd.mcap"
+    data = bytearray(path.read_bytes())
+    chunks = _chunks(bytes(data))
+    assert len(chunks) >= 2
+    start = chunks[0][0]
+    data[start + 25:start + 33] = (2**40).to_bytes(8, "little")  # uncompressed_size
+    path.write_bytes(data)
+    tracemalloc.start()
+    try:
+        report = reindex(tmp_path / "zstd")
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert report.damaged and report.lost == len(chunks[0][2])
+    assert peak < 200 * 2**20  # far below the 1 TiB it asked for
+    assert set(_stamps(tmp_path / "zstd")) == {t for _, _, ts in chunks[1:] for t in ts}
