@@ -190,6 +190,8 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
         if name not in arrays:
             raise HydroFileError(f"{p}: array {name!r} is missing")
         a = arrays[name]
+        if a.dtype.kind not in "fciu":  # text, bytes, booleans, dates, structures
+            raise HydroFileError(f"{p}: {name} holds {a.dtype} values; expected numbers")
         if a.ndim != len(shape):
             raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
         for size, want in zip(a.shape, shape, strict=True):

@@ -283,7 +283,7 @@ def topic_pub(s: Session, topic: str, type_name: str, values: str, out: TextIO,
     """
     import yaml
 
-    from boat_dynamics.physics.scenario import MAX_DEPTH
+    from boat_dynamics.physics.scenario import MAX_DEPTH, ScenarioError, check_bounded
     from boat_dynamics.physics.scenario.read import yaml_depth
     from boat_msgs_py.fields import FieldError, message_class, set_fields
     from boat_msgs_py.qos import COMMAND_QOS
@@ -293,12 +293,15 @@ def topic_pub(s: Session, topic: str, type_name: str, values: str, out: TextIO,
         if yaml_depth(values, MAX_DEPTH) > MAX_DEPTH:  # before the recursive composer
             raise IntrospectionError(f"VALUES must nest at most {MAX_DEPTH} levels deep")
         parsed = yaml.safe_load(values) if values.strip() else {}
+        check_bounded(parsed, "VALUES")  # an alias fan-out: 60-99 s in set_fields before
         msg = set_fields(cls(), {} if parsed is None else parsed)
     except yaml.YAMLError as exc:
         raise IntrospectionError(f"VALUES {values!r} is not YAML: {' '.join(str(exc).split())}"
                                  ) from None
     except FieldError as exc:
         raise IntrospectionError(str(exc)) from None
+    except ScenarioError as exc:
+        raise IntrospectionError(f"VALUES {exc.allowed}") from None
     pub = s.node.create_publisher(cls, topic, COMMAND_QOS)
     if wait_matching:
         out.write(f"Waiting for at least {wait_matching} matching subscription(s)...\n")

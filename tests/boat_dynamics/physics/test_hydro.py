@@ -34,6 +34,10 @@ def _write(path, **changes):
     ({"omega": np.array([1.0])}, "but 1 elsewhere"),
     ({"added_mass_inf": np.zeros((6, 5))}, "added_mass_inf has shape (6, 5), expected (6, 6)"),
     ({"center_of_mass": np.array([0.0, np.nan, 0.0])}, "center_of_mass has non-finite values"),
+    # text: np.isfinite raised a TypeError (a traceback) before
+    ({"center_of_mass": np.array(["0", "0", "0"])}, "center_of_mass holds <U1 values; expected "
+                                                    "numbers"),
+    ({"omega": np.array([b"x"] * 40)}, "omega holds |S1 values; expected numbers"),
 ])
 def test_a_malformed_coefficient_file_is_refused_naming_the_array(tmp_path, changes, fragment):
     with pytest.raises(HydroFileError) as err:

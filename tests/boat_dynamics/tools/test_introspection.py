@@ -74,3 +74,19 @@ def test_topic_pub_refuses_values_nested_deeper_than_a_scenario_may_be():
     with pytest.raises(IntrospectionError, match="VALUES must nest at most 32 levels deep"):
         topic_pub(Session(None, _NoWaitExecutor()), "/x", "std_msgs/msg/Float64", deep,
                   io.StringIO())
+
+
+def test_topic_pub_refuses_an_alias_fan_out():
+    """8 kB of YAML aliases expanding to 9^8 values: 60-99 s in set_fields before."""
+    import io
+
+    import pytest
+
+    from boat_dynamics.tools.introspection import IntrospectionError, Session, topic_pub
+
+    rows = ["a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1]"]
+    rows += [f"a{i}: &a{i} [" + ", ".join([f"*a{i - 1}"] * 9) + "]" for i in range(1, 9)]
+    values = "{" + ", ".join(rows) + ", data: 1.0}"
+    with pytest.raises(IntrospectionError, match="VALUES must hold at most 200000 values"):
+        topic_pub(Session(None, _NoWaitExecutor()), "/x", "std_msgs/msg/Float64", values,
+                  io.StringIO())

@@ -35,6 +35,7 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "SimulationSettings",
+    "check_bounded",
     "default_scenario_path",
     "document_digest",
     "load_scenario",
@@ -91,7 +92,7 @@ MAX_DEPTH = 32
 MAX_VALUES = 200_000
 
 
-def _bounded(data: Any, source: str) -> None:
+def check_bounded(data: Any, source: str) -> None:
     """Refuse data nested deeper than MAX_DEPTH or of more than MAX_VALUES values expanded.
 
     One pass over the distinct containers (shared ones, YAML aliases, are counted by
@@ -132,7 +133,7 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     Raises:
         ScenarioError: an invalid key or value, named by its path.
     """
-    _bounded(data, source)
+    check_bounded(data, source)
     d = mapping(data, "")
     only(d, "", ("simulation", "ocean", "environment", "boats"))
     sim = simulation_block(d.get("simulation"))
