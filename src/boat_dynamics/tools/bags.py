@@ -21,14 +21,17 @@ from boat_msgs_py import names
 
 __all__ = [
     "DEFAULT_MAX_FIELDS",
+    "ODOMETRY_TYPE",
     "BagError",
     "Comparison",
     "FieldDifference",
     "TopicComparison",
     "compare_bags",
     "flatten",
+    "odometry_topics",
     "read_bag",
     "read_bag_topics",
+    "read_bag_types",
 ]
 
 #: Absolute tolerance of fields no --tol pattern matches.
@@ -117,8 +120,38 @@ def read_bag_topics(path: str | Path) -> list[str]:
     Raises:
         BagError: the bag is missing or unreadable.
     """
+    return sorted(read_bag_types(path))
+
+
+def read_bag_types(path: str | Path) -> dict[str, str]:
+    """Each topic of a bag and its message type (``nav_msgs/msg/Odometry``).
+
+    Raises:
+        BagError: the bag is missing or unreadable.
+    """
     with _open_bag(path) as (_, reader):
-        return sorted({c.topic for c in reader.connections})
+        return {c.topic: c.msgtype for c in reader.connections}
+
+
+#: The type of a boat's odometry, which plot and view draw.
+ODOMETRY_TYPE = "nav_msgs/msg/Odometry"
+
+
+def odometry_topics(path: str | Path) -> dict[str, str]:
+    """A bag's boats: ``*/odom`` topic -> boat name, those of type nav_msgs/msg/Odometry.
+
+    Raises:
+        BagError: the bag is unreadable, or has no such topic (naming any ``*/odom`` of
+            another type).
+    """
+    types = read_bag_types(path)
+    named = {t: b for t in types if (b := names.boat_of(t, names.ODOM)) is not None}
+    boats = {t: b for t, b in named.items() if types[t] == ODOMETRY_TYPE}
+    if not boats:
+        wrong = "; ".join(f"{t} is {types[t]}" for t in sorted(named))
+        raise BagError(f"{path}: no */odom topic of type {ODOMETRY_TYPE}"
+                       + (f" ({wrong})" if wrong else f" (it has: {', '.join(sorted(types))})"))
+    return boats
 
 
 #: numpy dtypes of sensor_msgs/PointField datatypes (1 INT8 .. 8 FLOAT64).

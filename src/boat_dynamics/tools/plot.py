@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from boat_dynamics.physics.rigid_body import quat_to_euler
-from boat_dynamics.tools.bags import BagError, read_bag
+from boat_dynamics.tools.bags import odometry_topics, read_bag
 from boat_msgs_py import names
 
 __all__ = ["plot_bag"]
@@ -187,10 +187,8 @@ def plot_bag(bag: str | Path, out: str | Path | None = None) -> list[Path]:
     matplotlib.use("Agg")
 
     bag = Path(bag)
+    boats = sorted(odometry_topics(bag).values())  # BagError: none of the right type
     messages = read_bag(bag)
-    boats = sorted(b for t in messages if (b := names.boat_of(t, names.ODOM)) is not None)
-    if not boats:
-        raise BagError(f"{bag}: no odom topic to plot (topics: {', '.join(sorted(messages))})")
     target = Path(out) if out else bag.with_suffix(".png")
     target.parent.mkdir(parents=True, exist_ok=True)
     written = []

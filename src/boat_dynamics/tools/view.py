@@ -197,21 +197,22 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO = sys.stderr,
         BagError: the bag cannot be read.
         ViewError: no Rerun, the ports are taken, or the bag has no odometry.
     """
-    from boat_dynamics.tools.bags import read_bag, read_bag_topics
+    from boat_dynamics.tools.bags import BagError, odometry_topics, read_bag, read_bag_topics
     from boat_msgs_py.convert import wave_field_from_msg
 
     topics = read_bag_topics(bag)
-    boats = {t: b for t in topics if (b := names.boat_of(t, names.ODOM)) is not None}
-    if not boats:
-        raise ViewError(f"{bag}: no */odom topic to show (it has: {', '.join(topics)})")
+    try:
+        boats = odometry_topics(bag)
+    except BagError as exc:
+        raise ViewError(str(exc)) from None
     wrenches = {names.wrench_topic(b, s): (b, s) for b in boats.values()
                 for s in options.sources if names.wrench_topic(b, s) in topics}
     wanted = [*boats, *wrenches, *([names.WAVE_FIELD] if names.WAVE_FIELD in topics else [])]
     messages = read_bag(bag, wanted)
     fields = messages.pop(names.WAVE_FIELD, [])
     sea = wave_field_from_msg(fields[0][1]) if fields else None
-    events = sorted((stamp, topic, msg) for topic, msgs in messages.items()
-                    for stamp, msg in msgs)
+    events = sorted(((stamp, topic, msg) for topic, msgs in messages.items()
+                     for stamp, msg in msgs), key=lambda e: e[:2])  # repeated stamps: in order
     epoch = _stamp_ns(fields[0][1]) if fields else events[0][0]
     scene, _, url, server = _scene(options, status)
     for stamp, topic, msg in events:

@@ -1,9 +1,11 @@
 """`boatsim plot`: a readable PNG per boat, into a folder made if missing."""
 
 import math
+import re
 import struct
 
 import numpy as np
+import pytest
 from geometry_msgs.msg import WrenchStamped
 from nav_msgs.msg import Odometry
 from rclpy.serialization import serialize_message
@@ -68,3 +70,45 @@ def test_three_boats_give_three_figures_in_a_folder_made_for_them(tmp_path, caps
     pixels = matplotlib.image.imread(target.with_name("run_bravo.png"))
     assert pixels.std() > 0.05  # drawn on, not blank
     assert len(np.unique(pixels.reshape(-1, pixels.shape[-1]), axis=0)) > 50
+
+
+def _odd_bag(path, odom_type):
+    """/good/odom twice per stamp; /bad/odom a Float64 (or an Odometry, as asked)."""
+    store = get_typestore(Stores.ROS2_JAZZY)
+    with Writer(path, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        good = writer.add_connection("/good/odom", "nav_msgs/msg/Odometry", typestore=store)
+        bad = writer.add_connection("/bad/odom", odom_type, typestore=store)
+        for i in range(50):
+            odom = Odometry()
+            odom.header.stamp.nanosec = i * 20_000_000
+            odom.pose.pose.orientation.w = 1.0
+            for _ in range(2):  # a repeated stamp
+                writer.write(good, i * 20_000_000, serialize_message(odom))
+            writer.write(bad, i * 20_000_000, serialize_message(
+                Float64(data=1.0) if odom_type.startswith("std_msgs") else odom))
+    return path
+
+
+def test_plot_and_view_draw_odometry_and_skip_an_odom_of_another_type(tmp_path, capsys):
+    """Before: an AttributeError traceback on the Float64, and a ValueError on the repeated
+    stamps in the view (sorting compared the messages)."""
+    from boat_dynamics.tools.bags import BagError
+    from boat_dynamics.tools.plot import plot_bag
+    from boat_dynamics.tools.view import ViewError, ViewOptions, view_bag
+
+    bag = _odd_bag(tmp_path / "odd", "std_msgs/msg/Float64")
+    assert plot_bag(bag, tmp_path / "p.png") == [tmp_path / "p.png"]  # /good only
+    assert view_bag(bag, ViewOptions(save=str(tmp_path / "v.rrd"))) == 0
+    assert (tmp_path / "v.rrd").stat().st_size > 0
+    only_bad = tmp_path / "bad"
+    store = get_typestore(Stores.ROS2_JAZZY)
+    with Writer(only_bad, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        conn = writer.add_connection("/odom", "std_msgs/msg/Float64", typestore=store)
+        writer.write(conn, 0, serialize_message(Float64(data=1.0)))
+    message = "no */odom topic of type nav_msgs/msg/Odometry (/odom is std_msgs/msg/Float64)"
+    with pytest.raises(BagError, match=re.escape(message)):
+        plot_bag(only_bad)
+    with pytest.raises(ViewError, match=re.escape(message)):
+        view_bag(only_bad, ViewOptions(save=str(tmp_path / "w.rrd")))
+    assert main(["plot", str(only_bad)]) == 2
+    assert message in capsys.readouterr().err
