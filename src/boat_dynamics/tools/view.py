@@ -210,7 +210,11 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO = sys.stderr,
     wanted = [*boats, *wrenches, *([names.WAVE_FIELD] if names.WAVE_FIELD in topics else [])]
     messages = read_bag(bag, wanted)
     fields = messages.pop(names.WAVE_FIELD, [])
-    sea = wave_field_from_msg(fields[0][1]) if fields else None
+    try:
+        sea = wave_field_from_msg(fields[0][1]) if fields else None
+    except ValueError as exc:  # InvalidSeaStateError: what the ocean would refuse
+        raise ViewError(f"{bag}: its {names.WAVE_FIELD} is not a sea the ocean accepts "
+                        f"({exc})") from None
     events = sorted(((stamp, topic, msg) for topic, msgs in messages.items()
                      for stamp, msg in msgs), key=lambda e: e[:2])  # repeated stamps: in order
     epoch = _stamp_ns(fields[0][1]) if fields else events[0][0]
@@ -254,12 +258,18 @@ class _Live:
         self.t = -math.inf  # the latest simulation time seen
         self._boats: set[str] = set()
         self._next_discovery = -math.inf
+        self.refused = 0  # wave fields refused
         node.create_subscription(WaveField, names.WAVE_FIELD, self._on_field, WAVE_FIELD_QOS)
 
     def _on_field(self, msg) -> None:
         from boat_msgs_py.convert import wave_field_from_msg
 
-        self.sea, self.epoch_ns = wave_field_from_msg(msg), _stamp_ns(msg)
+        try:
+            self.sea, self.epoch_ns = wave_field_from_msg(msg), _stamp_ns(msg)
+        except ValueError as exc:  # InvalidSeaStateError: what the ocean would refuse
+            if not self.refused:  # logged once; the sea drawn so far stays
+                self.node.get_logger().error(f"ignoring an invalid {names.WAVE_FIELD}: {exc}")
+            self.refused += 1
 
     def discover(self, now: float) -> None:
         """Subscribe to the boats whose odometry appeared on the graph since the last look."""

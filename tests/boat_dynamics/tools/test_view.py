@@ -1,0 +1,40 @@
+"""`boatsim view`'s live subscriptions, without ROS: what a hostile peer's sea does to them."""
+
+import math
+
+from boat_msgs.msg import WaveComponent, WaveField
+
+
+class _Logger:
+    def __init__(self) -> None:
+        self.errors: list[str] = []
+
+    def error(self, text: str) -> None:
+        self.errors.append(text)
+
+
+class _Node:
+    def __init__(self) -> None:
+        self.logger = _Logger()
+
+    def create_subscription(self, *args):
+        return None
+
+    def get_logger(self) -> _Logger:
+        return self.logger
+
+
+def test_a_wave_field_the_ocean_would_refuse_is_logged_once_and_the_view_goes_on():
+    """Before: InvalidSeaStateError in the callback, a traceback, and the view ended."""
+    from boat_dynamics.tools.view import _Live
+
+    node = _Node()
+    live = _Live(node, scene=None, sources=())
+    one = WaveComponent(amplitude=0.1, wavelength=20.0, direction=0.0, steepness=0.5,
+                        phase=0.0)
+    live._on_field(WaveField(gravity=9.81, depth=math.inf, components=[one]))
+    good = live.sea
+    for _ in range(3):
+        live._on_field(WaveField(gravity=9.81, depth=math.inf, components=[one] * 20_000))
+    assert live.refused == 3 and live.sea is good
+    assert len(node.logger.errors) == 1 and "at most 1000" in node.logger.errors[0]
