@@ -86,12 +86,13 @@ browser:
 
 # Without ARGS: the tests that start no ROS processes on both cores (pytest-xdist: 9.5 -> 6
 # min here), then the ROS end-to-end tests two files at a time (10.5 -> 7 min here; each
-# worker has its own ROS domains, see tests/ros/conftest.py).
+# worker has its own ROS domains, see tests/ros/conftest.py). Each stage lists its 15 slowest
+# tests (the budget is 15 minutes in all).
 test: setup $(VENV)/.test-installed browser
 	$(VENV)/bin/ruff check src tests benchmarks examples
 ifeq ($(strip $(ARGS)),)
-	$(VPY) -m pytest -n 2 --ignore=tests/ros
-	$(VPY) -m pytest -n 2 --dist loadfile tests/ros
+	$(VPY) -m pytest -n 2 --durations=15 --ignore=tests/ros
+	$(VPY) -m pytest -n 2 --durations=15 --dist loadfile tests/ros
 else
 	$(VPY) -m pytest $(ARGS)
 endif
