@@ -410,11 +410,19 @@ def test_undecodable_messages_exit_2_with_one_line(two_runs, tmp_path):
     with Writer(bad, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
         conn = writer.add_connection("/odom", "foo_msgs/msg/Bar", typestore=store)
         writer.write(conn, 0, b"\x00\x01\x00")  # 3 bytes: not a float64 + int32
-    for args in (["compare", str(bad), str(two_runs / "a"), "--topics", "/odom"],
-                 ["plot", str(bad)]):
+    short = tmp_path / "short"  # an Odometry connection whose message is 3 bytes
+    with Writer(short, version=9, storage_plugin=StoragePlugin.MCAP) as writer:
+        conn = writer.add_connection("/odom", "nav_msgs/msg/Odometry", typestore=store)
+        writer.write(conn, 0, b"\x00\x01\x00")
+    for args, fragment in (
+            (["compare", str(bad), str(two_runs / "a"), "--topics", "/odom"],
+             "cannot decode /odom [foo_msgs/msg/Bar]"),
+            (["plot", str(bad)], "no */odom topic of type nav_msgs/msg/Odometry (/odom is "
+                                 "foo_msgs/msg/Bar)"),
+            (["plot", str(short)], "cannot decode /odom [nav_msgs/msg/Odometry]")):
         out = cli_run(*args)
         assert out.returncode == 2, out.stderr
-        assert "cannot decode /odom [foo_msgs/msg/Bar]" in out.stderr
+        assert fragment in out.stderr
         assert len(out.stderr.strip().splitlines()) == 1 and "Traceback" not in out.stderr
 
 
