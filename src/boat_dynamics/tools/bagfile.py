@@ -164,6 +164,10 @@ class JazzyWriter(Writer):
         if self.storage is not None:
             self.storage.abandon()
             self.storage = None
+        self._release_lock()
+
+    def _release_lock(self) -> None:
+        """Remove the lock file and close it, which releases the flock."""
         if self._lock is not None:
             (self.path / LOCK_NAME).unlink(missing_ok=True)
             os.close(self._lock)
@@ -174,10 +178,7 @@ class JazzyWriter(Writer):
         super().close()
         text = self.metapath.read_text()
         self.metapath.write_text(text.replace(_ROSBAGS_DISTRO, f"ros_distro: {ROS_DISTRO}"))
-        if self._lock is not None:
-            (self.path / LOCK_NAME).unlink(missing_ok=True)
-            os.close(self._lock)  # releases the flock
-            self._lock = None
+        self._release_lock()
 
 
 def recorder_alive(bag: str | Path) -> int | None:
