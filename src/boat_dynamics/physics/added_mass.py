@@ -14,11 +14,12 @@ Q(nu) = -C_A(nu) nu with the skew-symmetric C_A of Kirchhoff's equations (Sagatu
 (3 x 3 blocks of A), which does no work. :func:`added_mass_coriolis` applies it to the
 horizontal-plane motion (surge, sway, yaw), the manoeuvring terms: for nu = (u, v, r),
 X = A22 v r + A26 r^2, Y = -A11 u r, N = (A11 - A22) u v - A26 u r. The Munk moment
-N = -(A22 - A11) u v turns a hull broadside to its path (the hull's and the rudder's lift keep
-a course-stable boat straight: :mod:`.rudder`), and Y = -A11 u r is the added mass's share of
-the centripetal force in a turn. Newman (1977), "Marine Hydrodynamics", sec. 4.13; Fossen 2005,
-"A nonlinear unified state-space model for ship maneuvering and control in a seaway"
-(the manoeuvring model's C_A(nu) beside the seakeeping memory).
+N = -(A22 - A11) u v turns a hull broadside to its path (the hull's and the rudder's lift
+keep a course-stable boat straight: :mod:`.hull_lift`, :mod:`.rudder`), and Y = -A11 u r is
+the added mass's share of the centripetal force in a turn. Newman (1977), "Marine
+Hydrodynamics", sec. 4.13; Fossen 2005, "A nonlinear unified state-space model for ship
+maneuvering and control in a seaway" (the manoeuvring model's C_A(nu) beside the seakeeping
+memory).
 
 Left out, stated: Q of the heave, roll and pitch motion. Its part linear in the speed U (heave
 U A11 q, pitch U (A33 - A11) w: slender-body theory's speed terms in the body frame) does the

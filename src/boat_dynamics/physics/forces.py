@@ -18,6 +18,7 @@ from boat_dynamics.physics.contact import Contact, GroupContact
 from boat_dynamics.physics.damping import damping, radiation_damping
 from boat_dynamics.physics.diffraction import excitation_wrench
 from boat_dynamics.physics.hull_drag import hull_drag_in_motion
+from boat_dynamics.physics.hull_lift import hull_lift
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy, pressure_wrenches
 from boat_dynamics.physics.mooring import mooring_wrench
 from boat_dynamics.physics.propulsion import thrusters_wrench
@@ -73,6 +74,11 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         damp = damp + Wrench(made[0] * carried[:, None], made[1] * carried[:, None])
     if system.coupled:  # a 6 x 6 added mass at forward speed: the Munk moment
         damp = damp + _added_mass_at_speed(system, state, rot, environment, carried)
+    if system.lift is not None:  # the trailing section's lift at speed
+        lift = hull_lift(system.lift.added_mass * carried[:, None], system.lift.position,
+                         _through_current(state.velocity, rot, environment),
+                         state.angular_velocity, com)
+        damp = damp + lift
     push = _per_group(system, lambda g: thrusters_wrench(
         g.propulsion, state.throttle[g.index],
         [inputs.angle_of(j)[g.index] for j in range(len(g.propulsion))], com[g.index]))

@@ -15,6 +15,7 @@ from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.carriage import Carriage
 from boat_dynamics.physics.control import ControlSettings
 from boat_dynamics.physics.hull import BoxHull, HullMesh, box_mesh
+from boat_dynamics.physics.hull_lift import HullLift
 from boat_dynamics.physics.hydro import HydroCoefficients, hydro_key
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.mooring import Mooring
@@ -86,6 +87,8 @@ class Derivation:
             its equilibrium waterline (:func:`.wind.windage_of_hull`), or None: none.
         mooring_period: s, the natural period of a soft mooring (:func:`.mooring.soft_mooring`,
             with the derived added mass) holding the boat where it starts, or None: free.
+        hull_lift: set ``hull_lift`` from the hull at its equilibrium and the coefficients'
+            A22 (:func:`.hull_lift.trailing_sections`); needs ``memory``.
     """
 
     critical_ratio: np.ndarray | None = None
@@ -96,6 +99,7 @@ class Derivation:
     estimate: str | None = None
     windage: Windage | None = None
     mooring_period: float | None = None
+    hull_lift: bool = False
 
 
 @dataclass(frozen=True)
@@ -147,6 +151,8 @@ class BoatParams:
         water_velocity: where the water velocity of the damping is taken
             (:data:`WaterVelocity`).
         windage: what the wind acts on (:mod:`.wind`), or None: no wind load.
+        hull_lift: the trailing sections whose lift acts at speed (:mod:`.hull_lift`), or
+            None: no hull lift.
     """
 
     hull: BoxHull
@@ -177,6 +183,7 @@ class BoatParams:
     carriage: Carriage | None = None
     water_velocity: WaterVelocity = "reference_point"
     windage: Windage | None = None
+    hull_lift: HullLift | None = None
 
     @property
     def thrusters(self) -> tuple[Propulsion, ...]:

@@ -21,6 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
+from boat_dynamics.physics.hull_lift import HullLift
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, BoatState, Forces, WaterVelocity
 from boat_dynamics.physics.mooring import Mooring
@@ -371,6 +372,9 @@ class System:
             windage), or None when no boat has any.
         windage_centre: (B, 3) m, body frames, where the wind's force acts, or None.
         towed: the boats on a towing carriage (:mod:`.carriage`).
+        lift: the boats' trailing sections stacked ((B, 2) kg/m a22, (B, 2, 3) m positions;
+            zero for a boat without hull lift), or None when no boat has any
+            (:mod:`.hull_lift`).
     """
 
     params: tuple[BoatParams, ...]
@@ -401,6 +405,7 @@ class System:
     windage: np.ndarray | None = None
     windage_centre: np.ndarray | None = None
     towed: tuple[int, ...] = ()
+    lift: HullLift | None = None
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -436,7 +441,18 @@ class System:
             mooring=_moorings(ps),
             **_windages(ps),
             towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
+            lift=_lifts(ps),
         )
+
+
+def _lifts(ps: Sequence[BoatParams]) -> HullLift | None:
+    """The boats' trailing sections stacked, or None when no boat has hull lift."""
+    if all(p.hull_lift is None for p in ps):
+        return None
+    none = HullLift(np.zeros(2), np.zeros((2, 3)))
+    lifts = [none if p.hull_lift is None else p.hull_lift for p in ps]
+    return HullLift(np.array([h.added_mass for h in lifts], dtype=float),
+                    np.array([h.position for h in lifts], dtype=float))
 
 
 def _windages(ps: Sequence[BoatParams]) -> dict:

@@ -15,7 +15,8 @@ import numpy as np
 
 from boat_dynamics.physics.contact import contact
 from boat_dynamics.physics.forces import forces
-from boat_dynamics.physics.hull import box_mesh
+from boat_dynamics.physics.hull import HullMesh, box_mesh
+from boat_dynamics.physics.hull_lift import trailing_sections
 from boat_dynamics.physics.hydro import HydroCoefficients, estimate
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
@@ -166,7 +167,8 @@ def derive(params: BoatParams) -> BoatParams:
 
     The equilibrium height (flat water, upright) becomes ``control.height_offset``; with
     potential-flow coefficients, the 6 x 6 infinite-frequency added mass and the fitted
-    radiation memory of the Cummins equation (:func:`.radiation.fit_memory`), or the added
+    radiation memory of the Cummins equation (:func:`.radiation.fit_memory`) and the hull's
+    trailing sections (:func:`.hull_lift.trailing_sections`), or the added
     mass and radiation damping of :func:`potential_flow_at_resonance`; then
     ``damping_linear`` += :func:`critical_damping` of ``critical_ratio``, with
     ``quadratic``, ``damping_quadratic`` = :func:`default_drag`, and the windage the wind
@@ -187,6 +189,9 @@ def derive(params: BoatParams) -> BoatParams:
     if params.hydro is not None and wanted.memory:
         params = replace(params, added_mass_matrix=params.hydro.added_mass_inf.copy(),
                          radiation_memory=fit_memory(params.hydro))
+        if wanted.hull_lift:
+            params = replace(params, hull_lift=trailing_sections(
+                _mesh(params), z_eq, float(params.hydro.added_mass_inf[1, 1])))
     if params.hydro is not None and (wanted.added_mass or wanted.radiation_damping):
         added, radiation = potential_flow_at_resonance(params, params.hydro, z_eq)
         if wanted.added_mass:
@@ -220,9 +225,7 @@ def horizontal_mass(params: BoatParams) -> np.ndarray:
 
 def _windage(params: BoatParams, given: Windage, z_eq: float) -> Windage:
     """``given`` with its NaN fields from the hull above its equilibrium waterline."""
-    mesh = (params.buoyancy.mesh if isinstance(params.buoyancy, MeshBuoyancy)
-            else box_mesh(params.hull))
-    hull = windage_of_hull(mesh, z_eq, params.hull.length)
+    hull = windage_of_hull(_mesh(params), z_eq, params.hull.length)
     return Windage(
         frontal_area=hull.frontal_area if np.isnan(given.frontal_area) else given.frontal_area,
         lateral_area=hull.lateral_area if np.isnan(given.lateral_area) else given.lateral_area,
@@ -254,3 +257,10 @@ def potential_flow_at_resonance(params: BoatParams, coefficients: HydroCoefficie
         added[dof] = a
         damping[dof] = coefficients.damping_at(omega)[dof, dof]
     return added, damping
+
+
+def _mesh(params: BoatParams) -> HullMesh:
+    """The hull's mesh: the mesh model's own, or the box's."""
+    if isinstance(params.buoyancy, MeshBuoyancy):
+        return params.buoyancy.mesh
+    return box_mesh(params.hull)

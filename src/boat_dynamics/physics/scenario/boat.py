@@ -13,6 +13,7 @@ import numpy as np
 from boat_dynamics.physics.carriage import Carriage
 from boat_dynamics.physics.commands import CommandScript
 from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.physics.hull_lift import HULL_LIFT_MODELS
 from boat_dynamics.physics.hydro import (
     HydroCoefficients,
     HydroFileError,
@@ -233,7 +234,24 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
     return replace(params, hydro=coefficients, derive=Derivation(
         critical_ratio=ratio, quadratic="quadratic" not in dd,
         added_mass=model == "resonance" and "added_mass" not in d,
-        radiation_damping=radiation, memory=model == "cummins", estimate=missing))
+        radiation_damping=radiation, memory=model == "cummins", estimate=missing,
+        hull_lift=_hull_lift(d.get("hydrodynamics"), f"{key}.hydrodynamics", model)))
+
+
+def _hull_lift(raw: Any, key: str, model: RadiationModel | None) -> bool:
+    """``hydrodynamics.hull_lift``: the trailing section's lift (:mod:`.hull_lift`) or none.
+
+    Only with ``radiation: cummins`` (it completes the Munk moment of the added mass that
+    radiation carries). Default ``none`` until it is validated on the shipped boxes: slender-body
+    theory's yaw damping is twice what Clarke's (1983) regression gives a box as wide as the
+    default's (L/B 2, B/T 4), and with it the default box turns at a third of its rate.
+    """
+    d = {} if raw is None else mapping(raw, key)
+    lift = choice(d, "hull_lift", key, "none", HULL_LIFT_MODELS)
+    if "hull_lift" in d and lift != "none" and model != "cummins":
+        raise ScenarioError(f"{key}.hull_lift", lift, "needs hydrodynamics.radiation cummins "
+                            "(the added mass whose Munk moment it completes), or none")
+    return lift == "trailing_edge" and model == "cummins"
 
 
 def _windage(d: Mapping[str, Any], key: str) -> Windage:
@@ -414,7 +432,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
         the hull's key when its coefficients are to be estimated.
     """
     d = mapping(raw, key)
-    only(d, key, ("coefficients", "radiation"))
+    only(d, key, ("coefficients", "radiation", "hull_lift"))
     mesh = isinstance(params.buoyancy, MeshBuoyancy)
     describe(f"{key}.coefficients", None, "a .npz coefficient file (boatsim hydro; relative: "
              "to the scenario's folder), auto: the shipped or hydro/ file of this hull (or the "
@@ -422,9 +440,10 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
              "sample points")
     path = d.get("coefficients", "auto" if mesh else "none")
     if path == "none":
-        if "radiation" in d:
-            raise ScenarioError(f"{key}.radiation", d["radiation"],
-                                "needs hydrodynamics.coefficients (a coefficient file, or auto)")
+        for name in ("radiation", "hull_lift"):
+            if name in d:
+                raise ScenarioError(f"{key}.{name}", d[name], "needs hydrodynamics."
+                                    "coefficients (a coefficient file, or auto)")
         return None, None, None
     model = choice(d, "radiation", key, "cummins", RADIATION_MODELS)
     if not isinstance(path, str) or not path:
