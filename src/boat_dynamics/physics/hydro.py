@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DOFS", "ESTIMATE_REFERENCE", "SHIPPED_COEFFICIENTS", "HydroCoefficients",
+__all__ = ["DOFS", "ESTIMATE_REFERENCE", "SHIPPED_COEFFICIENTS", "GapMode", "HydroCoefficients",
            "HydroFileError", "NarrowPeak", "coefficient_directories", "estimate",
            "find_coefficients", "froude_scaled", "hydro_key", "load_coefficients", "moved",
            "narrow_peaks"]
@@ -53,6 +53,30 @@ class HydroFileError(ValueError):
 
 
 @dataclass(frozen=True)
+class GapMode:
+    """One lightly damped resonance of a multihull's file (the sloshing between its hulls).
+
+    Its share of the radiation kernel K(s) = B + i omega (A - A_inf), s = i omega, is the pole
+    pair K_m = rho c / (s - p) + conj(rho c) / (s - conj p), p = -zeta omega0 +
+    i omega0 sqrt(1 - zeta^2), c = 2 zeta omega0 p / (p - conj p) (for a real residue
+    rho h(s), h = 2 zeta omega0 s / (s^2 + 2 zeta omega0 s + omega0^2), B_m(omega0) = rho);
+    its share of the diffraction force is excitation conj(h) (Capytaine's e^(-i omega t)).
+    :mod:`boat_dynamics.physics.gap_modes` computes with them.
+
+    Attributes:
+        omega0: rad/s, the undamped natural frequency.
+        zeta: the damping ratio, in (0, 1) (B's peak is 2 zeta omega0 wide at half height).
+        residue: (6, 6) complex, symmetric, N s/m, N s, N m s (as B).
+        excitation: (D, 6) complex, N/m and N m/m, on the file's directions.
+    """
+
+    omega0: float
+    zeta: float
+    residue: np.ndarray
+    excitation: np.ndarray
+
+
+@dataclass(frozen=True)
 class HydroCoefficients:
     """One hull's potential-flow coefficients at its floating position.
 
@@ -69,6 +93,8 @@ class HydroCoefficients:
         center_of_mass: (3,) m, body frame, the rotation centre of the dofs.
         source: where the coefficients come from: the file's path, or the description of an
             estimate (:func:`estimate`).
+        gap_modes: the file's gap resonances, found by local solves around its narrow peaks
+            (:class:`GapMode`; the ``gap_mode_*`` arrays), or none.
     """
 
     omega: np.ndarray
@@ -82,6 +108,7 @@ class HydroCoefficients:
     inertia_matrix: np.ndarray
     center_of_mass: np.ndarray
     source: str = ""
+    gap_modes: tuple[GapMode, ...] = ()
 
     def added_mass_at(self, omega: float) -> np.ndarray:
         """(6, 6) A at ``omega`` (linear in omega between grid points, clamped at the ends)."""
@@ -168,6 +195,9 @@ _SHAPES = {
     "diffraction": ("W", "D", 6), "hydrostatic_stiffness": (6, 6), "inertia_matrix": (6, 6),
     "center_of_mass": (3,),
 }
+#: The optional arrays of a file's gap modes (:class:`GapMode`): all four or none.
+_MODE_SHAPES = {"gap_mode_omega": ("M",), "gap_mode_zeta": ("M",),
+                "gap_mode_residue": ("M", 6, 6), "gap_mode_excitation": ("M", "D", 6)}
 
 
 def load_coefficients(path: str | Path) -> HydroCoefficients:
@@ -180,33 +210,63 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
     try:
         _check_sizes(p)
         with np.load(p, allow_pickle=False) as data:
-            arrays = {name: np.asarray(data[name]) for name in _SHAPES if name in data.files}
+            arrays = {name: np.asarray(data[name]) for name in (*_SHAPES, *_MODE_SHAPES)
+                      if name in data.files}
     except (OSError, ValueError, zipfile.BadZipFile, EOFError, MemoryError) as exc:
         if isinstance(exc, HydroFileError):
             raise
         raise HydroFileError(f"{p}: not a readable .npz coefficient file ({exc})") from exc
     sizes: dict[str, int] = {}
-    for name, shape in _SHAPES.items():
+    for name in _SHAPES:
         if name not in arrays:
             raise HydroFileError(f"{p}: array {name!r} is missing")
-        a = arrays[name]
-        if a.dtype.kind not in "fciu":  # text, bytes, booleans, dates, structures
-            raise HydroFileError(f"{p}: {name} holds {a.dtype} values; expected numbers")
-        if a.ndim != len(shape):
-            raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
-        for size, want in zip(a.shape, shape, strict=True):
-            if isinstance(want, str):
-                if sizes.setdefault(want, size) != size:
-                    raise HydroFileError(f"{p}: {name} has shape {a.shape}: {want} = {size}, "
-                                         f"but {sizes[want]} elsewhere")
-            elif size != want:
-                raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
-        if not np.all(np.isfinite(a)):
-            raise HydroFileError(f"{p}: {name} has non-finite values")
+        _check_array(p, name, arrays[name], _SHAPES[name], sizes)
     if sizes["W"] < 2 or np.any(np.diff(arrays["omega"]) <= 0.0) or arrays["omega"][0] <= 0.0:
         raise HydroFileError(f"{p}: omega must hold at least two increasing values > 0")
     _check_physics(p, arrays)
-    return HydroCoefficients(**{name: arrays[name] for name in _SHAPES}, source=str(p))
+    return HydroCoefficients(**{name: arrays[name] for name in _SHAPES}, source=str(p),
+                             gap_modes=_gap_modes(p, arrays, sizes))
+
+
+def _check_array(p: Path, name: str, a: np.ndarray, shape: tuple, sizes: dict[str, int]) -> None:
+    """HydroFileError unless ``a`` holds finite numbers of ``shape`` (named sizes agreeing)."""
+    if a.dtype.kind not in "fciu":  # text, bytes, booleans, dates, structures
+        raise HydroFileError(f"{p}: {name} holds {a.dtype} values; expected numbers")
+    if a.ndim != len(shape):
+        raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
+    for size, want in zip(a.shape, shape, strict=True):
+        if isinstance(want, str):
+            if sizes.setdefault(want, size) != size:
+                raise HydroFileError(f"{p}: {name} has shape {a.shape}: {want} = {size}, "
+                                     f"but {sizes[want]} elsewhere")
+        elif size != want:
+            raise HydroFileError(f"{p}: {name} has shape {a.shape}, expected {shape}")
+    if not np.all(np.isfinite(a)):
+        raise HydroFileError(f"{p}: {name} has non-finite values")
+
+
+def _gap_modes(p: Path, arrays: dict[str, np.ndarray], sizes: dict[str, int]
+               ) -> tuple[GapMode, ...]:
+    """The file's gap modes (the ``gap_mode_*`` arrays: all four or none), checked."""
+    present = [name for name in _MODE_SHAPES if name in arrays]
+    if not present:
+        return ()
+    if len(present) != len(_MODE_SHAPES):
+        missing = sorted(set(_MODE_SHAPES) - set(present))
+        raise HydroFileError(f"{p}: gap mode arrays {missing} are missing (all four or none)")
+    for name, shape in _MODE_SHAPES.items():
+        _check_array(p, name, arrays[name], shape, sizes)
+    omega0, zeta = arrays["gap_mode_omega"], arrays["gap_mode_zeta"]
+    if np.iscomplexobj(omega0) or np.iscomplexobj(zeta):
+        raise HydroFileError(f"{p}: gap_mode_omega and gap_mode_zeta must be real")
+    if np.any(omega0 <= 0.0) or np.any(omega0 > MAX_OMEGA):
+        raise HydroFileError(f"{p}: gap_mode_omega {omega0.tolist()} rad/s: each in "
+                             f"(0, {MAX_OMEGA:g}]")
+    if np.any(zeta <= 0.0) or np.any(zeta >= 1.0):
+        raise HydroFileError(f"{p}: gap_mode_zeta {zeta.tolist()}: each in (0, 1)")
+    residue = arrays["gap_mode_residue"].astype(complex)
+    return tuple(GapMode(float(w0), float(z), r, x.astype(complex)) for w0, z, r, x in
+                 zip(omega0, zeta, residue, arrays["gap_mode_excitation"], strict=True))
 
 
 def _check_sizes(p: Path) -> None:
@@ -327,7 +387,8 @@ def moved(hydro: HydroCoefficients, center: np.ndarray) -> HydroCoefficients:
 
     A rigid motion about the old centre c is one about the new centre n plus a translation:
     with d = c - n and T = [[I, -[d]x], [0, I]], A' = T^T A T (B, A_inf, C, M alike) and
-    F' = T^T F (Newman 1977, sec. 6.11; Fossen 2011, sec. 7.5).
+    F' = T^T F (Newman 1977, sec. 6.11; Fossen 2011, sec. 7.5); a gap mode's residue as B, its
+    excitation as F.
     """
     d = hydro.center_of_mass - np.asarray(center, dtype=float)
     t = np.eye(6)
@@ -341,7 +402,10 @@ def moved(hydro: HydroCoefficients, center: np.ndarray) -> HydroCoefficients:
         square(hydro.added_mass_inf), hydro.directions,
         np.einsum("ki,...k->...i", t, hydro.froude_krylov),
         np.einsum("ki,...k->...i", t, hydro.diffraction), square(hydro.hydrostatic_stiffness),
-        square(hydro.inertia_matrix), np.asarray(center, dtype=float), hydro.source)
+        square(hydro.inertia_matrix), np.asarray(center, dtype=float), hydro.source,
+        tuple(replace(m, residue=square(m.residue),
+                      excitation=np.einsum("ki,...k->...i", t, m.excitation))
+              for m in hydro.gap_modes))
 
 
 def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
@@ -349,7 +413,8 @@ def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
 
     Lengths x s, frequencies / sqrt(s); a coefficient's powers of s follow its dofs (e = 1 for
     a rotation): A and M s^(3 + e_i + e_j), B s^(2.5 + e_i + e_j), C s^(2 + e_i + e_j), the
-    excitation per metre of amplitude s^(2 + e_i) (Newman 1977, sec. 2.11; ITTC 7.5-02-07-02.1).
+    excitation per metre of amplitude s^(2 + e_i) (Newman 1977, sec. 2.11; ITTC 7.5-02-07-02.1);
+    a gap mode's residue as B, its excitation as the excitation.
     """
     e = _ROTATIONAL[:, None] + _ROTATIONAL[None, :]
     return HydroCoefficients(
@@ -358,7 +423,9 @@ def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
         hydro.directions, hydro.froude_krylov * scale ** (2.0 + _ROTATIONAL),
         hydro.diffraction * scale ** (2.0 + _ROTATIONAL),
         hydro.hydrostatic_stiffness * scale ** (2.0 + e), hydro.inertia_matrix * scale ** (3.0 + e),
-        hydro.center_of_mass * scale, hydro.source)
+        hydro.center_of_mass * scale, hydro.source,
+        tuple(GapMode(m.omega0 / np.sqrt(scale), m.zeta, m.residue * scale ** (2.5 + e),
+                      m.excitation * scale ** (2.0 + _ROTATIONAL)) for m in hydro.gap_modes))
 
 
 def estimate(mass: float, center_of_mass: np.ndarray, water_density: float, z_eq: float,

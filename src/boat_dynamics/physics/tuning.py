@@ -15,13 +15,13 @@ import numpy as np
 
 from boat_dynamics.physics.contact import contact
 from boat_dynamics.physics.forces import forces
+from boat_dynamics.physics.gap_modes import memory_of
 from boat_dynamics.physics.hull import HullMesh, box_mesh
 from boat_dynamics.physics.hull_lift import trailing_sections
 from boat_dynamics.physics.hydro import HydroCoefficients, estimate
 from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.model import BoatInputs, BoatParams, initial_state
 from boat_dynamics.physics.mooring import soft_mooring
-from boat_dynamics.physics.radiation import fit_memory
 from boat_dynamics.physics.rigid_body import rotation_matrix
 from boat_dynamics.physics.system import FleetInputs, FleetState, System
 from boat_dynamics.physics.wind import Windage, windage_of_hull
@@ -167,7 +167,7 @@ def derive(params: BoatParams) -> BoatParams:
 
     The equilibrium height (flat water, upright) becomes ``control.height_offset``; with
     potential-flow coefficients, the 6 x 6 infinite-frequency added mass and the fitted
-    radiation memory of the Cummins equation (:func:`.radiation.fit_memory`) and the hull's
+    radiation memory of the Cummins equation (:func:`.gap_modes.memory_of`) and the hull's
     trailing sections (:func:`.hull_lift.trailing_sections`), or the added
     mass and radiation damping of :func:`potential_flow_at_resonance`; then
     ``damping_linear`` += :func:`critical_damping` of ``critical_ratio``, with
@@ -188,7 +188,7 @@ def derive(params: BoatParams) -> BoatParams:
     linear, quadratic = params.damping_linear, params.damping_quadratic
     if params.hydro is not None and wanted.memory:
         params = replace(params, added_mass_matrix=params.hydro.added_mass_inf.copy(),
-                         radiation_memory=fit_memory(params.hydro))
+                         radiation_memory=memory_of(params.hydro))
         if wanted.hull_lift:
             params = replace(params, hull_lift=trailing_sections(
                 _mesh(params), z_eq, float(params.hydro.added_mass_inf[1, 1])))

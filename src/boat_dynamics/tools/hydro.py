@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from boat_dynamics.physics.gap_modes import memory_of
 from boat_dynamics.physics.hydro import (
     coefficient_directories,
     find_coefficients,
@@ -27,7 +28,7 @@ from boat_dynamics.physics.hydro import (
     narrow_peaks,
 )
 from boat_dynamics.physics.model import BoatParams, coefficients_key, hull_mesh
-from boat_dynamics.physics.radiation import POOR_FIT, fit_memory
+from boat_dynamics.physics.radiation import POOR_FIT
 from boat_dynamics.physics.rigid_body import mass_matrix
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.tuning import equilibrium_height
@@ -180,16 +181,16 @@ def file_warnings(path: Path) -> list[str]:
     """What a user should know of a coefficient file before running with it (empty: nothing).
 
     Its narrow peaks (:func:`boat_dynamics.physics.hydro.narrow_peaks`: resonances such as a
-    catamaran's gap sloshing) and how well the radiation memory fits it
-    (:func:`boat_dynamics.physics.radiation.fit_memory`; over :data:`POOR_FIT` the boat's
-    radiation may be wrong).
+    catamaran's gap sloshing) when it carries no gap modes that explain them, and how well
+    the radiation memory fits it (:func:`boat_dynamics.physics.gap_modes.memory_of`; over
+    :data:`POOR_FIT` the boat's radiation may be wrong).
     """
     try:
         hydro = load_coefficients(path)
     except ValueError as exc:  # HydroFileError: unreadable, an array missing or malformed
         return [f"{path.name}: not checked: {exc}"]
-    peaks = narrow_peaks(hydro)
-    error = fit_memory(hydro).error
+    peaks = () if hydro.gap_modes else narrow_peaks(hydro)
+    error = memory_of(hydro).error
     lines = []
     if peaks:
         where = {}
