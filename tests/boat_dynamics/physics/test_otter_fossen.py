@@ -11,8 +11,9 @@ How close and why they differ (docs/DESIGN.md, "Physics"): the straight-line spe
 4-10 % below his, all of it his payload's weight applied in body axes, which pushes his
 bow-down boat ahead (without it his full-thrust speed is 3.086 m/s, boatsim's 0.15 % below).
 The turning rate is 57 % of his with one thruster at half thrust: boatsim's Otter runs
-``coefficients: none`` (the catamaran's file has gap resonances its radiation fit misses), so
-it has no added mass and no Munk moment, which is 43.8 N m of his turn's yaw budget.
+``coefficients: none`` (with its added mass its shallow box pontoons are directionally
+unstable: docs/DESIGN.md), so it has no added mass and no Munk moment, which is 43.8 N m of
+his turn's yaw budget.
 """
 
 import math
