@@ -397,14 +397,15 @@ def moved(hydro: HydroCoefficients, center: np.ndarray) -> HydroCoefficients:
     def square(m):
         return np.einsum("ki,...kl,lj->...ij", t, m, t)
 
+    def force(f):
+        return np.einsum("ki,...k->...i", t, f)
+
     return HydroCoefficients(
         hydro.omega, square(hydro.added_mass), square(hydro.radiation_damping),
-        square(hydro.added_mass_inf), hydro.directions,
-        np.einsum("ki,...k->...i", t, hydro.froude_krylov),
-        np.einsum("ki,...k->...i", t, hydro.diffraction), square(hydro.hydrostatic_stiffness),
+        square(hydro.added_mass_inf), hydro.directions, force(hydro.froude_krylov),
+        force(hydro.diffraction), square(hydro.hydrostatic_stiffness),
         square(hydro.inertia_matrix), np.asarray(center, dtype=float), hydro.source,
-        tuple(replace(m, residue=square(m.residue),
-                      excitation=np.einsum("ki,...k->...i", t, m.excitation))
+        tuple(replace(m, residue=square(m.residue), excitation=force(m.excitation))
               for m in hydro.gap_modes))
 
 
