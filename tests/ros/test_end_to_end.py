@@ -23,7 +23,6 @@ from rclpy.parameter import Parameter
 from std_msgs.msg import Float32, Float64
 from support import ROOT, cli_run
 
-from boat_dynamics.physics.hydro import SHIPPED_COEFFICIENTS
 from boat_dynamics.physics.rigid_body import quat_to_euler
 from boat_msgs_py import names
 from boat_msgs_py.convert import seconds_to_time, time_to_seconds, wave_field_from_msg
@@ -419,11 +418,11 @@ def test_several_boats_each_in_its_namespace(boatsim, probe):
 def test_boats_whose_start_up_lines_differ_in_severity_start(tmp_path):
     # a catamaran whose radiation memory fits poorly (a warning) beside boats with info lines
     # only: rclpy refuses one call site whose severity changes (issue 32: `boatsim run` died
-    # at start-up with "Logger severity cannot be changed between calls"). The shipped Otter
-    # file without its gap modes (in the scenario's hydro/, found first) fits poorly.
-    otter = ROOT / "scenarios" / "otter.stl"
+    # at start-up with "Logger severity cannot be changed between calls"). The box-pontoon
+    # Otter's file without its gap modes (in the scenario's hydro/) fits poorly.
+    otter = ROOT / "tests" / "data" / "hydro" / "otter_box_pontoons.stl"
     name = "box_2x1.04x0.4_d0.078_28cbe58ae1ba94d9.npz"
-    with np.load(SHIPPED_COEFFICIENTS / name, allow_pickle=False) as d:
+    with np.load(otter.with_suffix(".npz"), allow_pickle=False) as d:
         plain = {k: d[k] for k in d.files if not k.startswith("gap_mode_")}
     (tmp_path / "hydro").mkdir()
     np.savez(tmp_path / "hydro" / name, **plain)

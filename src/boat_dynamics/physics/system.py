@@ -363,7 +363,8 @@ class System:
         rigid_mass_matrix: (C, 6, 6) their M_RB, or None.
         inertia_tensor: (C, 3, 3) kg m^2, their rigid-body inertia tensors, or None.
         memory: the boats' radiation memories stacked and padded to N =
-            :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes ((B, N) poles, (B, N, 6)
+            :data:`~boat_dynamics.physics.radiation.MAX_ORDER` modes, or the most any boat has
+            (a file with gap modes: up to 96) ((B, N) poles, (B, N, 6)
             input, (B, 6, N) output; zero for a boat without one), or None when no boat has
             one.
         mooring: the boats' moorings stacked ((B, 3) anchor, stiffness, damping; zero for a
@@ -497,7 +498,8 @@ def _coupling(ps: Sequence[BoatParams]) -> dict:
     if any(m is not None for m in memories):
         calm = RadiationMemory(np.zeros(0, complex), np.zeros((0, 6), complex),
                                np.zeros((6, 0), complex), 0.0)
-        memories = [(calm if m is None else m).padded(MAX_ORDER) for m in memories]
+        order = max(MAX_ORDER, *(m.poles.shape[0] for m in memories if m is not None))
+        memories = [(calm if m is None else m).padded(order) for m in memories]
         out["memory"] = RadiationMemory(np.array([m.poles for m in memories]),
                                         np.array([m.input for m in memories]),
                                         np.array([m.output for m in memories]),

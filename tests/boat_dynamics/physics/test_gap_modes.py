@@ -7,6 +7,9 @@ import numpy as np
 import pytest
 
 from boat_dynamics.physics.gap_modes import (
+    MODE_MAX_ORDER,
+    _block_error,
+    _fit_block,
     band_mask,
     dof_blocks,
     fit_with_modes,
@@ -25,9 +28,10 @@ from boat_dynamics.physics.hydro import (
     moved,
     narrow_peaks,
 )
-from boat_dynamics.physics.radiation import MAX_ORDER, RadiationMemory, fit_memory
+from boat_dynamics.physics.radiation import RadiationMemory, fit_memory
 
-OTTER = SHIPPED_COEFFICIENTS / "box_2x1.04x0.4_d0.078_28cbe58ae1ba94d9.npz"
+OTTER = Path(__file__).resolve().parents[2] / "data" / "hydro" / "otter_box_pontoons.npz"
+SHIPPED_OTTER = SHIPPED_COEFFICIENTS / "hull_2x1.04x0.4_d0.177_e884bec0fcfc08bc.npz"
 
 
 @pytest.fixture(scope="module")
@@ -51,23 +55,59 @@ def _errors_where(response: np.ndarray, hydro, keep: np.ndarray) -> tuple[float,
             float((a.max(axis=0) / np.sqrt(np.outer(as_, as_))).max()))
 
 
-def test_the_otters_memory_fits_its_file_within_5_percent_away_from_the_gap_modes(otter,
-                                                                                   memory):
-    """Issue 32: the catamaran's radiation fit within 5 % of its file away from the gap
-    resonance (outside omega0 +- 3 half-height widths of each of its 15 modes, 11 of the 40
-    grid points; each entry's error over its largest value in the file). Measured
-    2026-12-03: 4.4 % (B) and 4.1 % (A) there, 5.5 % at every point; the Hankel fit of the
-    same file without its modes misses it by 80 %."""
+def test_the_box_otters_memory_fits_its_file_within_5_percent_away_from_the_gap_modes(otter,
+                                                                                       memory):
+    """The box-pontoon Otter's file (shipped until 2026-12-04, 0.078 m draft): outside
+    omega0 +- 3 half-height widths of each of its 15 modes (11 of the 40 grid points), each
+    entry's error over its largest value in the file. Measured 2026-12-04 (96 states): 4.4 %
+    (B) and 3.8 % (A) there, 4.4 % at every point; the Hankel fit of the same file without its
+    modes misses it by 80 %."""
     assert len(otter.gap_modes) == 15
     keep = ~band_mask(otter.omega, otter.gap_modes)
     assert keep.sum() == 29
     b, a = _errors_where(memory.response(otter.omega), otter, keep)
     assert b < 0.05 and a < 0.05, (b, a)
     assert memory.error < 0.06
-    assert memory.poles.shape[0] <= MAX_ORDER
+    assert memory.poles.shape[0] <= MODE_MAX_ORDER
     assert np.all(memory.poles.real < 0.0)  # every state decays
     assert fit_memory(replace(otter, gap_modes=())).error > 0.5
     assert memory_of(otter).error == pytest.approx(memory.error)
+
+
+def test_the_shipped_otters_memory_fits_its_file_within_5_percent_away_from_the_gap_modes():
+    """Issue 32: the catamaran's radiation fit within 5 % of its file away from the gap
+    resonance. The shipped Otter (V pontoons, 0.177 m draft, 17 modes), outside omega0 +- 3
+    half-height widths of each mode, each entry's error over its largest value in the file.
+    Measured 2026-12-04: B 4.2 %, A 4.4 % there (the surge-pitch interference between the
+    pontoons needs the 96 states: 64 give 5.8 % and 5.5 %)."""
+    hydro = load_coefficients(SHIPPED_OTTER)
+    memory = memory_of(hydro)
+    assert len(hydro.gap_modes) == 17
+    keep = ~band_mask(hydro.omega, hydro.gap_modes)
+    assert keep.sum() >= 20
+    b, a = _errors_where(memory.response(hydro.omega), hydro, keep)
+    assert b < 0.05 and a < 0.05, (b, a)
+    assert memory.poles.shape[0] <= MODE_MAX_ORDER
+    assert np.all(memory.poles.real < 0.0)
+
+
+@pytest.mark.parametrize("count", [6, 8, 10, 12, 14, 16])
+def test_a_pair_that_relocates_onto_the_real_axis_stays_two_real_poles(count):
+    """Vector fitting's relocation turned the shipped Otter's heave pair into two real poles
+    with imaginary parts of +-1e-9 relative; each was then mirrored as if complex, and the
+    heave fits with 6 to 16 poles missed the file by 1.8 to 1.4e7 (measured 2026-12-04).
+    Made real, they fit within 2.5 %."""
+    hydro = load_coefficients(SHIPPED_OTTER)
+    modes = mode_memory(hydro.gap_modes)
+    of_modes = RadiationMemory(*modes, 0.0).response(hydro.omega)
+    w = hydro.omega
+    kernel = (hydro.radiation_damping + 1j * w[:, None, None]
+              * (hydro.added_mass - hydro.added_mass_inf) - of_modes)
+    scale = np.sqrt(np.abs(np.diagonal(hydro.radiation_damping, axis1=1, axis2=2)).max(axis=0))
+    ascale = np.sqrt(np.abs(np.diagonal(hydro.added_mass, axis1=1, axis2=2)).max(axis=0))
+    fit = _fit_block(w, kernel, [2], scale, ascale, count)
+    assert _block_error(RadiationMemory(*fit, 0.0).response(w) + of_modes, hydro, [2]) < 0.025
+    assert np.all(fit[0].real < 0.0)
 
 
 def test_a_real_residue_is_a_lorentzian_whose_added_mass_follows_kramers_kronig():

@@ -95,12 +95,12 @@ def test_the_lift_never_feeds_the_cross_flow(velocity, com):
 
 def test_a_catamarans_sections_hold_its_potential_flow_added_mass():
     mesh = load_mesh(str(SCENARIOS / "otter.stl"))
-    edges, side, ends = draft_profile(mesh, 0.122)
-    # two box pontoons 2 m long drawing 0.078 m: side area 2 x 0.078 m per metre
-    assert side == pytest.approx(np.full(side.shape, 0.156), rel=1e-6)  # float32 STL
-    assert ends == pytest.approx([0.078, 0.078], rel=1e-6)
-    lift = trailing_sections(mesh, 0.122, 21.11)
-    assert np.sum(lift.added_mass[0] * np.ones_like(side) * np.diff(edges)) == pytest.approx(21.11)
+    edges, side, ends = draft_profile(mesh, 0.0233)
+    # two prismatic V pontoons 2 m long drawing 0.1767 m: side area 2 x 0.1767 m per metre
+    assert side == pytest.approx(np.full(side.shape, 0.3534), rel=1e-6)  # float32 STL
+    assert ends == pytest.approx([0.1767, 0.1767], rel=1e-6)
+    lift = trailing_sections(mesh, 0.0233, 86.5)
+    assert np.sum(lift.added_mass[0] * np.ones_like(side) * np.diff(edges)) == pytest.approx(86.5)
     with pytest.raises(ValueError, match="out of the water"):
         draft_profile(mesh, 1.0)
 
@@ -152,8 +152,10 @@ def test_a_slender_hull_without_a_rudder_stops_turning_only_with_the_lift():
     ("{coefficients: auto}", None),
 ])
 def test_a_hull_lift_it_cannot_have_is_refused_and_none_is_the_default(tmp_path, hydro, match):
-    text = (SCENARIOS / "otter.yaml").read_text().replace(
-        "hydrodynamics: {coefficients: none}", f"hydrodynamics: {hydro}")
+    text = (SCENARIOS / "otter.yaml").read_text()
+    shipped = "hydrodynamics: {coefficients: auto, hull_lift: trailing_edge}"
+    assert text.count(shipped) == 1
+    text = text.replace(shipped, f"hydrodynamics: {hydro}")
     (tmp_path / "otter.stl").write_bytes((SCENARIOS / "otter.stl").read_bytes())
     (tmp_path / "s.yaml").write_text(text)
     if match is None:  # none is always allowed

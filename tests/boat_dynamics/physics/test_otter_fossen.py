@@ -8,12 +8,15 @@ n = sqrt(f) n_max; 119.68 N each at n_max), the mean of the last 20 of 120 s (20
 boatsim's cmd_thrust is the same fraction of its 120 N per thruster.
 
 How close and why they differ (docs/DESIGN.md, "Physics"): the straight-line speeds are
-4-10 % below his, all of it his payload's weight applied in body axes, which pushes his
-bow-down boat ahead (without it his full-thrust speed is 3.086 m/s, boatsim's 0.15 % below).
-The turning rate is 57 % of his with one thruster at half thrust: boatsim's Otter runs
-``coefficients: none`` (with its added mass its shallow box pontoons are directionally
-unstable: docs/DESIGN.md), so it has no added mass and no Munk moment, which is 43.8 N m of
-his turn's yaw budget.
+5-10 % below his, most of it his payload's weight applied in body axes, which pushes his
+bow-down boat ahead (without it his full-thrust speed is 3.086 m/s, boatsim's 1 % below).
+The turning rate is 53 % of his with one thruster at half thrust. Both models have the Munk
+moment (A22 - A11) u v: 43.8 N m of his turn's yaw budget, 24.8 N m of boatsim's. In
+boatsim it is balanced, as slender-body theory balances it at a transom, by the side force
+the flow leaves at the trailing end (``hull_lift: trailing_edge``: 27.9 N m against the
+turn), without which a hull with this added mass (A22 86.5 kg against m + A11 82.8 kg) is
+course-unstable and spins at 28 deg/s; his model has no such force (his newest otter.py
+drops the Munk moment in yaw: "if nonzero, must be balanced by adding nonlinear damping").
 """
 
 import math
@@ -49,15 +52,16 @@ def trials():
 
 
 def test_the_otters_straight_line_speeds_are_fossens_less_his_payload_push(trials):
-    # measured 2026-12-03: 0.774, 1.547, 2.316, 3.082 m/s: -9.9, -5.6, -4.5, -4.3 %
+    # measured 2026-12-04 (V pontoons, coefficients): 0.774, 1.544, 2.306, 3.054 m/s:
+    # -9.9, -5.8, -4.9, -5.2 %
     track, late = trials
     for i, (fraction, his) in enumerate(FOSSEN_SPEED.items()):
         speed = float(track.velocity[i, late, 0].mean())
         assert -0.11 < speed / his - 1.0 < -0.03, (fraction, speed, his)
 
 
-def test_the_otter_turns_slower_than_fossens_without_its_munk_moment(trials):
-    # measured 2026-12-03: 9.48 deg/s at 2.28 m/s against his 16.57 at 2.29 (0.57 of his);
+def test_the_otter_turns_slower_than_fossens_whose_munk_moment_is_unbalanced(trials):
+    # measured 2026-12-04: 8.80 deg/s at 2.27 m/s against his 16.57 at 2.29 (0.53 of his);
     # his own model without the Munk moment turns at 8.5 deg/s
     track, late = trials
     rate = -math.degrees(float(track.angular_velocity[4, late, 2].mean()))  # z up: to starboard
