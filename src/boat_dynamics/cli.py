@@ -265,6 +265,9 @@ def _add_bag_verbs(verbs) -> None:
                     "yaw moment. One boat: FILE.png (default BAG.png); several: FILE_<boat>.png.")
     plot.add_argument("bag", metavar="BAG")
     plot.add_argument("-o", "--output", metavar="FILE.png")
+    plot.add_argument("--scenario", metavar="SCENARIO",
+                      help="the run's scenario: its boats' scripted commands (which are not "
+                           "on any topic) are drawn with the commands")
     replay = verbs.add_parser(
         "replay", help="republish a bag's command topics with their recorded timing",
         description="Republish the command topics of BAG (default: every */cmd_thrust and "
@@ -800,14 +803,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.verb == "reindex":
             return _reindex(args.bag)
         if args.verb == "plot":
+            from boat_dynamics.physics.scenario import ScenarioError
             from boat_dynamics.tools.bags import BagError
-            from boat_dynamics.tools.plot import plot_bag
+            from boat_dynamics.tools.plot import PlotError, plot_bag
 
             try:
-                for path in plot_bag(args.bag, args.output):
+                for path in plot_bag(args.bag, args.output, args.scenario):
                     print(f"boatsim: wrote {path}")
                 return 0
-            except BagError as exc:
+            except (BagError, PlotError, ScenarioError) as exc:
                 print(f"boatsim plot: error: {exc}", file=sys.stderr)
                 return 2
         if args.verb == "replay":

@@ -98,8 +98,12 @@ def test_node_list_and_params(sim, cli):
     assert param("get", "/boat_dynamics", "cmd_timeout").strip() == "Double value is: 1.0"
     assert param("set", "/boat_dynamics", "cmd_timeout", "2").strip() == (
         "Set parameter successful")  # a whole number for a double: taken as 2.0
-    refused = param("set", "/boat_dynamics", "cmd_timeout", "-5")
-    assert refused.startswith("Setting parameter failed: ") and "out of range" in refused
+    for name, value, why in (("cmd_timeout", "-5", "out of range"),
+                             ("publish_rate_hz", "20.0", "read-only")):
+        refused = cli("param", "set", "/boat_dynamics", name, value, "--timeout", "20")
+        assert refused.returncode == 1, refused  # ros2 param set exits 0: a script can't tell
+        assert refused.stderr.startswith("boatsim param: error: Setting parameter failed: ")
+        assert why in refused.stderr, refused.stderr
     dump = yaml.safe_load(param("dump", "/boat_dynamics"))
     params = dump["/boat_dynamics"]["ros__parameters"]
     assert params["cmd_timeout"] == 2.0 and params["charlie.control_mode"] == "constrained"

@@ -378,10 +378,15 @@ def param_get(s: Session, target: str, name: str, wait: float = 5.0) -> str:
 
 
 def param_set(s: Session, target: str, name: str, text: str, wait: float = 5.0) -> str:
-    """``ros2 param set NODE NAME VALUE``: ``Set parameter successful`` or why not.
+    """``ros2 param set NODE NAME VALUE``: ``Set parameter successful``.
 
     VALUE is YAML (``2``, ``2.5``, ``true``, ``sea``); a whole number for a double parameter
     is taken as a double (``ros2`` refuses it as the wrong type).
+
+    Raises:
+        IntrospectionError: the node refused the value (``Setting parameter failed: `` and
+            its reason: out of range, read-only, the wrong type), so that a script sees a
+            non-zero exit status where ``ros2 param set`` exits 0.
     """
     import yaml
     from rcl_interfaces.msg import ParameterType
@@ -402,8 +407,9 @@ def param_set(s: Session, target: str, name: str, text: str, wait: float = 5.0) 
     result = _result(s, client.set_parameters([Parameter(name, value=value)]),
                      f"setting {name}", wait)
     answer = result.results[0]
-    return ("Set parameter successful" if answer.successful
-            else f"Setting parameter failed: {answer.reason}")
+    if not answer.successful:
+        raise IntrospectionError(f"Setting parameter failed: {answer.reason}")
+    return "Set parameter successful"
 
 
 def param_dump(s: Session, target: str, wait: float = 5.0) -> str:
