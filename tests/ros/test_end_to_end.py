@@ -470,9 +470,28 @@ def test_a_real_time_run_behind_the_wall_clock_still_takes_commands_and_calls(
                      "the command counted on /diagnostics")
     probe.spin_until(lambda: re.search(r"t\s+[\d.]+ s\s+x", sim.output()), 30.0,
                      "a status line")
+    probe.spin_until(lambda: "running behind real time by" in sim.output(), 30.0,
+                     "the log saying that the run is behind")
     assert sim.stop() == 0
     factors = [float(f) for f in re.findall(r"t\s+[\d.]+ s\s+x\s*([\d.]+)", sim.output())]
     assert factors and max(factors) < 0.5, factors  # it was behind: what this test is about
+    # it says so: once in the log (before, nothing), and on each status line past the first
+    assert sim.output().count("running behind real time by") == 1
+    assert re.search(r"heading\s+[-\d.]+ deg  behind \d+\.\d s", sim.output())
+
+
+def test_the_lag_is_said_once_when_behind_and_once_when_caught_up():
+    from boat_dynamics.ros.runner import Lag
+
+    lag = Lag()
+    assert lag.check(0.05, 1.0) == ("", None, None)  # in step
+    assert lag.check(0.5, 0.8)[:2] == ("  behind 0.5 s", None)  # behind, not yet said
+    suffix, level, line = lag.check(2.0, 0.6)
+    assert (suffix, level) == ("  behind 2.0 s", "warning")
+    assert line.startswith("running behind real time by 2.0 s (x0.60 so far)")
+    assert lag.check(9.0, 0.3) == ("  behind 9.0 s", None, None)  # said once
+    assert lag.check(0.02, 1.0) == ("", "info", "caught up with real time")
+    assert lag.check(0.0, 1.0) == ("", None, None)
 
 
 def test_processes_runs_each_node_in_its_own_process(boatsim, probe):

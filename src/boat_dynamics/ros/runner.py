@@ -51,7 +51,7 @@ from boat_msgs_py.qos import RECORD_QOS
 from boat_msgs_py.tap import Tap
 from ocean_sim.ros.node import OceanNode
 
-__all__ = ["CHECKPOINT_PERIOD", "EXIT_STOPPED", "RunOptions", "run"]
+__all__ = ["CHECKPOINT_PERIOD", "EXIT_STOPPED", "Lag", "RunOptions", "run"]
 
 #: The exit status of a run that went to its end with a boat stopped because its state diverged
 #: (the node's watchdog): not a crash, so a supervisor does not restart it.
@@ -151,11 +151,51 @@ def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
             raise handler.exception()
 
 
-class _Status:
-    """The live status line: sim time, real-time factor, first boat's position, speed, heading."""
+class Lag:
+    """How far a real-time run is behind the wall clock, and when to say so.
 
-    def __init__(self, stream: TextIO, n_boats: int) -> None:
+    A run behind the wall clock steps on as fast as it can to catch up (its stamps stay those
+    of the simulation clock); the status line shows the lag, and the log says once when it
+    passes :data:`BEHIND` and once when it is back within :data:`CAUGHT_UP`.
+    """
+
+    #: s behind the wall clock at which the log says so.
+    BEHIND = 1.0
+    #: s: back in step.
+    CAUGHT_UP = 0.1
+
+    def __init__(self) -> None:
+        self.behind = False
+
+    def check(self, lag: float, rtf: float) -> tuple[str, str | None, str | None]:
+        """(status line suffix, log level or None, log line) for a lag of ``lag`` s.
+
+        Args:
+            lag: s of wall time past the simulation time since the loop started.
+            rtf: the real-time factor so far.
+        """
+        suffix = f"  behind {lag:.1f} s" if lag > self.CAUGHT_UP else ""
+        if lag > self.BEHIND and not self.behind:
+            self.behind = True
+            return suffix, "warning", (
+                f"running behind real time by {lag:.1f} s (x{rtf:.2f} so far): it steps as fast "
+                f"as it can to catch up, its stamps are the simulation's; fewer boats, a lower "
+                f"rate_hz, or --fast (simulation time on /clock) avoid it")
+        if lag < self.CAUGHT_UP and self.behind:
+            self.behind = False
+            return suffix, "info", "caught up with real time"
+        return suffix, None, None
+
+
+class _Status:
+    """The live status line: sim time, real-time factor, first boat's position, speed, heading.
+
+    In real time, also how far the run is behind the wall clock (:class:`Lag`).
+    """
+
+    def __init__(self, stream: TextIO, n_boats: int, realtime: bool = False) -> None:
         self._stream = stream
+        self._lag = Lag() if realtime else None
         self._tty = stream.isatty()
         self._period = _STATUS_PERIOD if self._tty else _LOG_STATUS_PERIOD
         self._n = n_boats
@@ -191,6 +231,13 @@ class _Status:
         more = f" (+{self._n - 1} boats)" if self._n > 1 else ""
         line = (f"t {t:8.2f} s  x{rtf:6.2f}  {label}{more}: pos ({pos[0]:7.2f}, {pos[1]:7.2f}, "
                 f"{pos[2]:5.2f}) m  speed {speed:5.2f} m/s  heading {heading:6.1f} deg")
+        if self._lag is not None:
+            suffix, level, said = self._lag.check((now - self._wall0) - (t - self._t0), rtf)
+            line += suffix
+            if level == "warning":
+                node.get_logger().warning(said)
+            elif level == "info":
+                node.get_logger().info(said)
         if self._tty:
             self._stream.write("\r" + line)
             self._written = True
@@ -235,7 +282,8 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     parent = _Parent(stop) if options.supervised or options.ready_fd is not None else None
     dds_note = use_profile()  # before the process's first participant
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-    loop = _Loop(scenario, options, clock, fast, bag, stop, _Status(status, len(scenario.boats)))
+    loop = _Loop(scenario, options, clock, fast, bag, stop,
+                 _Status(status, len(scenario.boats), realtime=not fast))
     loop.parent = parent
     loop.dds_note = dds_note
     loop.advertise_wrenches = advertise

@@ -35,6 +35,7 @@ heaved 1.46 m in a 0.53 m sea and turned through 447 deg with the rudder amidshi
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
 from functools import cache
@@ -42,6 +43,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from boat_dynamics.physics.boat import evaluate_forces
 from boat_dynamics.physics.model import BoatInputs, initial_state, reference_pose
@@ -78,10 +80,33 @@ def rough_sea(length: float, depth: float) -> WaveField:
                         depth=depth)
 
 
+#: A scenario's boat keys that do not make it another boat.
+_PER_BOAT = ("name", "initial_pose", "commands", "sensors")
+
+
 def _boats() -> list[tuple[str, str]]:
-    out = []
+    """(scenario, boat name) of each distinct boat on each distinct sea of the scenarios.
+
+    A boat is its scenario entry less :data:`_PER_BOAT`; the same boat at the same step rate
+    on the same sea is driven once (fleet.yaml's 100 copies of default.yaml's boat). A
+    scenario on flat water (calm.yaml) adds no case: each case drives its boat in calm water
+    as its reference; its boats must be among those driven.
+    """
+    out, seen, calm = [], set(), []
     for path in sorted(SCENARIOS.glob("*.yaml")):
-        out += [(path.name, b.name) for b in load_scenario(path).boats]
+        raw, sc = yaml.safe_load(path.read_text()), load_scenario(path)
+        for entry, b in zip(raw["boats"], sc.boats, strict=True):
+            boat = json.dumps({k: v for k, v in entry.items() if k not in _PER_BOAT},
+                              sort_keys=True)
+            if not sc.sea.components:
+                calm.append((path.name, b.name, boat))
+                continue
+            if (boat, sc.simulation.rate_hz, repr(sc.sea)) not in seen:
+                seen.add((boat, sc.simulation.rate_hz, repr(sc.sea)))
+                out.append((path.name, b.name))
+    driven = {boat for boat, _, _ in seen}
+    missing = [(s, n) for s, n, boat in calm if boat not in driven]
+    assert not missing, f"boats only ever on flat water, never driven through waves: {missing}"
     return out
 
 
