@@ -19,14 +19,14 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics import pipeline
-from boat_dynamics.physics.boat import BoatInputs
+from boat_dynamics.physics.core import pipeline
+from boat_dynamics.physics.core.boat import BoatInputs
+from boat_dynamics.physics.core.system import FleetInputs, FleetState, System
 from boat_dynamics.physics.scenario import default_scenario_path, load_scenario, parse_scenario
-from boat_dynamics.physics.system import FleetInputs, FleetState, System
-from boat_dynamics.process import keep_freed_memory
+from boat_msgs_py.process import keep_freed_memory
 from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
 
-keep_freed_memory()  # as `boatsim` does (see boat_dynamics/process.py)
+keep_freed_memory()  # as `boatsim` does (see boat_msgs_py/process.py)
 
 _BOX_COEFFICIENTS = (Path(__file__).resolve().parents[1] / "tests" / "data" / "hydro"
                      / "box_4x2x1_d0.5.npz")

@@ -100,8 +100,8 @@ def test_boat_dynamics_has_only_the_layers_at_its_top():
                  if p.name != "__pycache__")
     # bags.py: the deprecated alias of tools/bags.py (docs/DESIGN.md, "Changes to the contract");
     # data: package data (coefficient files), no code
-    assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "data", "physics",
-                   "process.py", "ros", "tools"]
+    assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "data", "physics", "ros",
+                   "tools"]
     assert not list((SRC / "boat_dynamics" / "data").rglob("*.py"))
 
 
@@ -165,3 +165,67 @@ def test_the_contract_package_sits_between_the_layers():
         if names:
             bad[f.name] = names
     assert bad == {}
+
+
+def test_ocean_sim_never_imports_boat_dynamics():
+    # the sea is the lower layer: the boats read it, it knows nothing of them
+    bad = {str(f.relative_to(SRC)): names for f in sorted((SRC / "ocean_sim").rglob("*.py"))
+           if (names := [n for _, n in imported_names(f.read_text(encoding="utf-8"))
+                         if n.split(".")[0] == "boat_dynamics"])}
+    assert bad == {}
+
+
+def _module_of(path: Path) -> str:
+    parts = path.relative_to(SRC).with_suffix("").parts
+    return ".".join(parts[:-1] if path.name == "__init__.py" else parts)
+
+
+def test_the_physics_modules_import_each_other_in_no_circle():
+    # before the folders by role: hull_drag <-> mesh_buoyancy, through the clip that lived in
+    # mesh_buoyancy; the clip is a module of its own (body/clip.py)
+    files = sorted((SRC / "boat_dynamics" / "physics").rglob("*.py"))
+    known = {_module_of(f) for f in files}
+    edges = {}
+    for f in files:
+        tree = ast.parse(f.read_text(encoding="utf-8"))
+        names = {n for _, n in imported_names(f.read_text(encoding="utf-8"))}
+        # ``from package import module``: the module, not just its package
+        names |= {f"{n.module}.{a.name}" for n in ast.walk(tree)
+                  if isinstance(n, ast.ImportFrom) and n.level == 0 and n.module
+                  for a in n.names}
+        edges[_module_of(f)] = {n for n in names if n in known and n != _module_of(f)
+                                and not _module_of(f).startswith(n + ".")}
+    state, circle = {}, []
+
+    def visit(m: str, path: list[str]) -> None:
+        state[m] = "open"
+        for n in sorted(edges.get(m, ())):
+            if state.get(n) == "open":
+                circle.append(path[path.index(n):] + [n] if n in path else [m, n])
+            elif n not in state:
+                visit(n, [*path, n])
+        state[m] = "done"
+
+    for m in sorted(edges):
+        if m not in state:
+            visit(m, [m])
+    assert circle == []
+
+
+def test_the_old_physics_module_names_still_import_and_say_where_they_went():
+    code = ("import importlib, warnings\n"
+            "from boat_dynamics.physics import MOVED\n"
+            "said = []\n"
+            "for name, folder in sorted(MOVED.items()):\n"
+            "    new = importlib.import_module(f'boat_dynamics.physics.{folder}.{name}')\n"
+            "    with warnings.catch_warnings(record=True) as w:\n"
+            "        warnings.simplefilter('always')\n"
+            "        old = importlib.import_module(f'boat_dynamics.physics.{name}')\n"
+            "    assert old is new, name\n"
+            "    said += [str(x.message) for x in w if x.category is DeprecationWarning]\n"
+            "print(len(MOVED), len(said)); print(said[0])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    count, warned = out.stdout.splitlines()[0].split()
+    assert int(count) == 34 and warned == count, out.stdout
+    assert "has moved to boat_dynamics.physics." in out.stdout

@@ -17,7 +17,7 @@ from pathlib import Path
 # 60-component surface query 1.6x slower on the 2-core reference machine (benchmarks/run.py).
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from boat_dynamics.process import keep_freed_memory, stop_on_signals
+from boat_msgs_py.process import keep_freed_memory, stop_on_signals
 
 keep_freed_memory()
 
@@ -592,11 +592,11 @@ def _read_scenario(path: str | None, who: str):
 
 def _run(args: argparse.Namespace) -> int:
     # Imported here so that `boatsim --help` answers without starting ROS.
-    from boat_dynamics.physics.pipeline import InitError
+    from boat_dynamics.physics.core.pipeline import InitError
     from boat_dynamics.physics.scenario import default_scenario_path
-    from boat_dynamics.process import sweep_temporaries
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError
+    from boat_msgs_py.process import sweep_temporaries
 
     path = args.scenario or default_scenario_path()
     if (scenario := _read_scenario(path, "boatsim")) is None:
@@ -628,8 +628,8 @@ def _run(args: argparse.Namespace) -> int:
 
 def _run_node(args: argparse.Namespace, scenario, path) -> int:
     """``_node``: one process of ``run --processes`` / ``--shards``, started by the parent."""
-    from boat_dynamics.physics.pipeline import InitError
-    from boat_dynamics.physics.snapshot import SnapshotError
+    from boat_dynamics.physics.core.pipeline import InitError
+    from boat_dynamics.physics.core.snapshot import SnapshotError
     from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import RunOptions, run
 
@@ -656,7 +656,7 @@ def _run_node(args: argparse.Namespace, scenario, path) -> int:
 
 def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     """``run --processes`` / ``--shards N``: the ocean and the shards, each a process."""
-    from boat_dynamics.physics.pipeline import InitError, start
+    from boat_dynamics.physics.core.pipeline import InitError, start
     from boat_dynamics.ros.processes import run_processes
     from boat_dynamics.ros.runner import RunOptions
     from boat_dynamics.tools.recording import RecordError
@@ -680,7 +680,7 @@ def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
 
 def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     """``run --only ocean | shard K/N``: one process of a sharded run, started alone."""
-    from boat_dynamics.physics.pipeline import InitError
+    from boat_dynamics.physics.core.pipeline import InitError
     from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import RunOptions, run
     from boat_dynamics.tools.recording import RecordError

@@ -23,7 +23,7 @@ from rclpy.parameter import Parameter
 from std_msgs.msg import Float32, Float64
 from support import ROOT, cli_run
 
-from boat_dynamics.physics.rigid_body import quat_to_euler
+from boat_dynamics.physics.body.rigid_body import quat_to_euler
 from boat_msgs_py import names
 from boat_msgs_py.convert import seconds_to_time, time_to_seconds, wave_field_from_msg
 from boat_msgs_py.qos import WAVE_FIELD_QOS

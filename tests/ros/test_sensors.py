@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import yaml
 
-from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.body.rigid_body import rotation_matrix
 from boat_dynamics.physics.sensors import Datum, geodetic_to_enu
 
 G = 9.81

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.body.rigid_body import rotation_matrix
 from boat_dynamics.physics.scenario import load_scenario
 from boat_dynamics.physics.sensors import geodetic_to_enu
 

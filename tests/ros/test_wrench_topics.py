@@ -67,12 +67,12 @@ def test_a_towed_boat_publishes_its_carriage_force(boatsim, tmp_path):
     # frame, about the centre of mass) is the force the physics computes (pipeline.step's
     # towing, the same scenario stepped here alone, to rounding), ahead and across nothing;
     # a boat not towed has no such topic.
-    from boat_dynamics.physics import pipeline
-    from boat_dynamics.physics.carriage import body_wrench
-    from boat_dynamics.physics.model import BoatInputs
-    from boat_dynamics.physics.rigid_body import rotation_matrix
+    from boat_dynamics.physics.body.rigid_body import rotation_matrix
+    from boat_dynamics.physics.core import pipeline
+    from boat_dynamics.physics.core.model import BoatInputs
+    from boat_dynamics.physics.core.system import FleetInputs
+    from boat_dynamics.physics.force_models.carriage import body_wrench
     from boat_dynamics.physics.scenario import load_scenario
-    from boat_dynamics.physics.system import FleetInputs
     from boat_dynamics.tools.bags import read_bag, read_bag_topics
 
     path = tmp_path / "towed.yaml"

@@ -1,7 +1,7 @@
 """The dynamics node: integrates every boat of a scenario and publishes its state and wrenches.
 
-A thin adapter: it checks commands (:mod:`boat_dynamics.physics.commands`), calls the core
-(:func:`boat_dynamics.physics.pipeline.step`, all boats as one fleet) and converts
+A thin adapter: it checks commands (:mod:`boat_dynamics.physics.core.commands`), calls the core
+(:func:`boat_dynamics.physics.core.pipeline.step`, all boats as one fleet) and converts
 (:mod:`boat_msgs_py.convert`). The runner (:mod:`boat_dynamics.ros.runner`) calls
 :meth:`DynamicsNode.advance` once per physics step.
 """
@@ -29,25 +29,16 @@ from rclpy.serialization import serialize_message
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64, Float64MultiArray, String
 
-from boat_dynamics.physics import pipeline
-from boat_dynamics.physics.boat import BoatState, reference_pose
-from boat_dynamics.physics.carriage import body_wrench
-from boat_dynamics.physics.commands import check_command
-from boat_dynamics.physics.contact import Contact, contact, reference_points
-from boat_dynamics.physics.control import CONTROL_MODES
-from boat_dynamics.physics.diagnostics import active_remedies, fleet_reports
-from boat_dynamics.physics.model import BoatParams
-from boat_dynamics.physics.propulsion import MAX_THRUSTERS
-from boat_dynamics.physics.radiation import POOR_FIT
-from boat_dynamics.physics.rigid_body import rotation_matrix
-from boat_dynamics.physics.scenario import BoatSpec, Scenario
-from boat_dynamics.physics.scenario.specs import (
-    ADVERTISED_WRENCH_BOATS,
-    SimulationSettings,
-    WrenchTopics,
-)
-from boat_dynamics.physics.snapshot import SnapshotError, flatten, restore
-from boat_dynamics.physics.system import (
+from boat_dynamics.physics.body.rigid_body import rotation_matrix
+from boat_dynamics.physics.body.wrench import cross
+from boat_dynamics.physics.core import pipeline
+from boat_dynamics.physics.core.boat import BoatState, reference_pose
+from boat_dynamics.physics.core.commands import check_command
+from boat_dynamics.physics.core.contact import Contact, contact, reference_points
+from boat_dynamics.physics.core.diagnostics import active_remedies, fleet_reports
+from boat_dynamics.physics.core.model import BoatParams
+from boat_dynamics.physics.core.snapshot import SnapshotError, flatten, restore
+from boat_dynamics.physics.core.system import (
     DIVERGED_RATE,
     DIVERGED_SPEED,
     FleetForces,
@@ -55,7 +46,16 @@ from boat_dynamics.physics.system import (
     FleetState,
     System,
 )
-from boat_dynamics.physics.wrench import cross
+from boat_dynamics.physics.force_models.carriage import body_wrench
+from boat_dynamics.physics.force_models.control import CONTROL_MODES
+from boat_dynamics.physics.force_models.propulsion import MAX_THRUSTERS
+from boat_dynamics.physics.potential_flow.radiation import POOR_FIT
+from boat_dynamics.physics.scenario import BoatSpec, Scenario
+from boat_dynamics.physics.scenario.specs import (
+    ADVERTISED_WRENCH_BOATS,
+    SimulationSettings,
+    WrenchTopics,
+)
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
@@ -200,7 +200,7 @@ class DynamicsNode(Node):
 
     Args:
         scenario: the scenario, its boats initialized
-            (:func:`boat_dynamics.physics.pipeline.init_scenario`).
+            (:func:`boat_dynamics.physics.core.pipeline.init_scenario`).
         clock: the shared simulation clock (advanced by this node).
         publish_clock: publish /clock (the simulation owns time: --fast).
         tap: also hand every published message to this (recording), or None.
@@ -249,7 +249,7 @@ class DynamicsNode(Node):
             EnvironmentMsg, names.ENVIRONMENT, self._on_environment, ENVIRONMENT_QOS)
         if any(spec.params.derive is not None for spec in scenario.boats):
             raise ValueError("scenario: its boats are not initialized (derive them and set "
-                             "them afloat with boat_dynamics.physics.pipeline.init_scenario)")
+                             "them afloat with boat_dynamics.physics.core.pipeline.init_scenario)")
         self._system = System.build([spec.params for spec in scenario.boats])
         self._state = FleetState.stack([spec.initial for spec in scenario.boats])
         self._forces: FleetForces | None = None  # acting during the last step

@@ -56,16 +56,16 @@ from pathlib import Path
 from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import (
+from boat_dynamics.ros.barrier import shard_slice
+from boat_dynamics.ros.runner import EXIT_STOPPED, RunOptions
+from boat_dynamics.tools.recording import RecordError
+from boat_msgs_py.process import (
     STOP_SIGNALS,
     pid_alive,
     start_child,
     stop_processes,
     temporary_prefix,
 )
-from boat_dynamics.ros.barrier import shard_slice
-from boat_dynamics.ros.runner import EXIT_STOPPED, RunOptions
-from boat_dynamics.tools.recording import RecordError
 
 __all__ = ["merge_orphaned_parts", "run_processes"]
 
@@ -219,7 +219,7 @@ def _restart_shard(shard: _Child, epoch: float, cuts: dict[Path, int],
     Its bag part (if it records) is cut at the snapshot's time in ``cuts``: the new process
     records what follows into a fresh part.
     """
-    from boat_dynamics.physics.snapshot import SnapshotError, load
+    from boat_dynamics.physics.core.snapshot import SnapshotError, load
 
     if shard.snapshot is None or shard.restarts >= _RESTARTS:
         return False

@@ -25,17 +25,10 @@ import rclpy
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor, TimeoutException
 from rclpy.signals import SignalHandlerOptions
 
-from boat_dynamics.physics.boat import reference_pose
-from boat_dynamics.physics.pipeline import init_scenario
-from boat_dynamics.physics.rigid_body import quat_to_euler
+from boat_dynamics.physics.body.rigid_body import quat_to_euler
+from boat_dynamics.physics.core.boat import reference_pose
+from boat_dynamics.physics.core.pipeline import init_scenario
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.process import (
-    SharedTime,
-    start_child,
-    stop_on_signals,
-    stop_processes,
-    watch_stdin,
-)
 from boat_dynamics.ros.barrier import StepConductor, StepMember, shard_slice
 from boat_dynamics.ros.node import (
     DynamicsNode,
@@ -47,6 +40,13 @@ from boat_dynamics.ros.node import (
 from boat_dynamics.ros.participants import PROFILE, Participants, use_profile
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder, declares_only
 from boat_msgs_py import names
+from boat_msgs_py.process import (
+    SharedTime,
+    start_child,
+    stop_on_signals,
+    stop_processes,
+    watch_stdin,
+)
 from boat_msgs_py.qos import RECORD_QOS
 from boat_msgs_py.tap import Tap
 from ocean_sim.ros.node import OceanNode
@@ -584,7 +584,7 @@ class _Loop:
 
     def _resume(self, deferred: bool) -> None:
         """Take the boats' state from ``options.resume`` (a dead shard's last snapshot)."""
-        from boat_dynamics.physics.snapshot import load
+        from boat_dynamics.physics.core.snapshot import load
 
         self.dynamics.restore(load(self.options.resume))
         self.logger.info(f"resuming at t = {self.clock.t:g} s from {self.options.resume}")
@@ -603,7 +603,7 @@ class _Loop:
         """
         if self.options.checkpoint is None:
             return
-        from boat_dynamics.physics.snapshot import save
+        from boat_dynamics.physics.core.snapshot import save
 
         if self.bag is not None:
             self.bag.flush()

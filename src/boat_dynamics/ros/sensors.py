@@ -16,8 +16,10 @@ from rclpy.node import Node
 from sensor_msgs.msg import Imu, NavSatFix
 from tf2_msgs.msg import TFMessage
 
-from boat_dynamics.physics.model import BoatState
-from boat_dynamics.physics.rigid_body import rotation_matrix
+from boat_dynamics.physics.body.rigid_body import rotation_matrix
+from boat_dynamics.physics.core.model import BoatState
+from boat_dynamics.physics.core.snapshot import SnapshotError, flatten, restore
+from boat_dynamics.physics.core.system import FleetState
 from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
 from boat_dynamics.physics.sensors import (
     GnssSpec,
@@ -32,8 +34,6 @@ from boat_dynamics.physics.sensors import (
     stream_key,
     true_motion,
 )
-from boat_dynamics.physics.snapshot import SnapshotError, flatten, restore
-from boat_dynamics.physics.system import FleetState
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, noisy_odometry, tf_message
@@ -128,7 +128,7 @@ class SensorPublisher:
         return [f"{sensor.boat.name}/{sensor.spec.name}" for _, sensor in self._sensors]
 
     def snapshot(self) -> dict[str, np.ndarray]:
-        """Every sensor's noise state, as arrays (:mod:`boat_dynamics.physics.snapshot`)."""
+        """Every sensor's noise state, as arrays (:mod:`boat_dynamics.physics.core.snapshot`)."""
         out: dict[str, np.ndarray] = {"sensors": np.array(self._names(), dtype=str)}
         for k, (_, sensor) in enumerate(self._sensors):
             if isinstance(sensor.state, int):  # an odometry sensor: its reading count

@@ -6,8 +6,9 @@ panels of :mod:`boat_dynamics.tools.bem_mesh`; radiation (6 dofs about the centr
 diffraction problems, one frequency at a time (clearing Capytaine 3.0.0's influence-matrix
 lru_cache after each), plus the zero- and infinite-frequency added mass; hydrostatics with
 Gauss-Legendre-2 quadrature. The result holds the arrays that
-:func:`boat_dynamics.physics.hydro.load_coefficients` reads, plus RAOs, metadata, the key of
-the inputs (:func:`boat_dynamics.physics.hydro.hydro_key`) and the conventions text;
+:func:`boat_dynamics.physics.potential_flow.hydro.load_coefficients` reads, plus RAOs, metadata,
+the key of
+the inputs (:func:`boat_dynamics.physics.potential_flow.hydro.hydro_key`) and the conventions text;
 :func:`write` saves it.
 
 Only a translation along z separates Capytaine's frame from the body frame, so moments about
@@ -31,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics.hydro import hydro_key
+from boat_dynamics.physics.potential_flow.hydro import hydro_key
 from boat_dynamics.tools.bem_mesh import (
     REL_TOL,
     VERTICAL_STRETCH,
@@ -265,7 +266,8 @@ def solve_hull(vertices, faces, *, draft_offset, mass, center_of_mass, inertia_m
             (:func:`.bem_mesh.default_panel_size`).
 
     Returns:
-        dict of NumPy arrays: those :func:`boat_dynamics.physics.hydro.load_coefficients`
+        dict of NumPy arrays: those
+        :func:`boat_dynamics.physics.potential_flow.hydro.load_coefficients`
         reads, plus ``rao``, ``added_mass_zero``, ``conventions``, ``key`` and metadata.
 
     Raises:

@@ -1,8 +1,9 @@
 """`boatsim hydro SCENARIO`: the potential-flow coefficient files of a scenario's hulls.
 
 Each boat's file is keyed by its hull mesh, mass properties and water
-(:func:`boat_dynamics.physics.model.coefficients_key`); a hull whose file already exists where
-``coefficients: auto`` looks (:func:`boat_dynamics.physics.hydro.coefficient_directories`) is
+(:func:`boat_dynamics.physics.core.model.coefficients_key`); a hull whose file already exists where
+``coefficients: auto`` looks
+(:func:`boat_dynamics.physics.potential_flow.hydro.coefficient_directories`) is
 not solved again. New files are solved with Capytaine (:mod:`boat_dynamics.tools.bem`, the
 ``bem`` extra) for the hull floating upright at rest at its own equilibrium. Before a solve
 starts, its plan is reported: panels (fitted to the hull and to the shortest wavelength asked
@@ -20,18 +21,18 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics.gap_modes import memory_of
-from boat_dynamics.physics.hydro import (
+from boat_dynamics.physics.body.rigid_body import mass_matrix
+from boat_dynamics.physics.core.model import BoatParams, coefficients_key, hull_mesh
+from boat_dynamics.physics.core.tuning import equilibrium_height
+from boat_dynamics.physics.potential_flow.gap_modes import memory_of
+from boat_dynamics.physics.potential_flow.hydro import (
     coefficient_directories,
     find_coefficients,
     load_coefficients,
     narrow_peaks,
 )
-from boat_dynamics.physics.model import BoatParams, coefficients_key, hull_mesh
-from boat_dynamics.physics.radiation import POOR_FIT
-from boat_dynamics.physics.rigid_body import mass_matrix
+from boat_dynamics.physics.potential_flow.radiation import POOR_FIT
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
-from boat_dynamics.physics.tuning import equilibrium_height
 from boat_dynamics.tools.bem import MAX_PANELS, SolvePlan, plan_hull
 
 __all__ = ["HullFile", "HydroError", "coefficient_files", "describe", "file_warnings"]
@@ -180,9 +181,10 @@ def _solve(spec: BoatSpec, key: str, depth: float, out_dir: Path, panels: dict, 
 def file_warnings(path: Path) -> list[str]:
     """What a user should know of a coefficient file before running with it (empty: nothing).
 
-    Its narrow peaks (:func:`boat_dynamics.physics.hydro.narrow_peaks`: resonances such as a
-    catamaran's gap sloshing) when it carries no gap modes that explain them, and how well
-    the radiation memory fits it (:func:`boat_dynamics.physics.gap_modes.memory_of`; over
+    Its narrow peaks (:func:`boat_dynamics.physics.potential_flow.hydro.narrow_peaks`: resonances
+    such as a catamaran's gap sloshing) when it carries no gap modes that explain them, and how well
+    the radiation memory fits it (:func:`boat_dynamics.physics.potential_flow.gap_modes.memory_of`;
+    over
     :data:`POOR_FIT` the boat's radiation may be wrong).
     """
     try:

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics.commands import CommandScript
-from boat_dynamics.physics.rigid_body import quat_to_euler
+from boat_dynamics.physics.body.rigid_body import quat_to_euler
+from boat_dynamics.physics.core.commands import CommandScript
 from boat_dynamics.tools.bags import odometry_topics, read_bag
 from boat_msgs_py import names
 

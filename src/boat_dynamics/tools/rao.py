@@ -1,10 +1,10 @@
 """`boatsim rao SCENARIO`: a boat's heave, roll and pitch RAOs, simulated and by potential flow.
 
 Each point runs the boat alone in one small regular wave
-(:func:`boat_dynamics.physics.seakeeping.regular_wave_response`); when the boat has a
+(:func:`boat_dynamics.physics.experiments.seakeeping.regular_wave_response`); when the boat has a
 potential-flow coefficient file, the frequency-domain RAO of that file is printed and drawn
-beside it (:func:`boat_dynamics.physics.seakeeping.potential_flow_rao`), so a user can check
-their own hull against theory. At a ``speed`` the boat is towed on a carriage, as in a towing
+beside it (:func:`boat_dynamics.physics.experiments.seakeeping.potential_flow_rao`), so a user can
+check their own hull against theory. At a ``speed`` the boat is towed on a carriage, as in a towing
 tank, and meets the waves at the encounter frequency omega_e = omega - k U cos(beta): the
 table gives it, and the plot draws against it.
 """
@@ -18,9 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from boat_dynamics.physics.model import BoatParams
-from boat_dynamics.physics.scenario import BoatSpec, Scenario
-from boat_dynamics.physics.seakeeping import (
+from boat_dynamics.physics.core.model import BoatParams
+from boat_dynamics.physics.core.tuning import derive
+from boat_dynamics.physics.experiments.seakeeping import (
     MIN_ENCOUNTERS,
     Response,
     encounter_frequency,
@@ -29,7 +29,7 @@ from boat_dynamics.physics.seakeeping import (
     rides,
     rigid_body_matrix,
 )
-from boat_dynamics.physics.tuning import derive
+from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from ocean_sim.physics.waves import angular_frequency
 
 __all__ = ["DEFAULT_DIRECTIONS_DEG", "DEFAULT_WAVELENGTHS", "RaoError", "RaoPoint",

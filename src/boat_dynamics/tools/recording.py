@@ -270,7 +270,7 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.signals import SignalHandlerOptions
 
-    from boat_dynamics.process import stop_on_signals
+    from boat_msgs_py.process import stop_on_signals
 
     bag = BagWriter(out, exclude=exclude)
     stop = threading.Event()

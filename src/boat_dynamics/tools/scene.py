@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.physics.hull import box_mesh
-from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.model import BoatParams
+from boat_dynamics.physics.body.hull import box_mesh
+from boat_dynamics.physics.core.model import BoatParams
+from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
 from ocean_sim.physics.waves import WaveField, sample_surface
 
 __all__ = ["DEFAULT_SOURCES", "POSE_PERIOD", "HullShape", "Scene", "hull_shape", "sea_mesh"]
@@ -81,7 +81,7 @@ def hull_shape(params: BoatParams | None) -> HullShape:
     m box of 4100 kg, 2 kN (a boat the scenario given to the viewer does not have).
     """
     if params is None:
-        from boat_dynamics.physics.hull import BoxHull
+        from boat_dynamics.physics.body.hull import BoxHull
 
         mesh, com, length, thrust = box_mesh(BoxHull(4.0, 2.0, 1.0)), np.zeros(3), 4.0, 2000.0
     else:

@@ -91,7 +91,7 @@ def _start_server(options: ViewOptions):
     import subprocess
     import tempfile
 
-    from boat_dynamics.process import die_with_parent
+    from boat_msgs_py.process import die_with_parent
 
     command = [sys.executable, "-m", "rerun", "--serve-web", "--bind", options.bind,
                "--port", str(options.grpc_port), "--web-viewer-port", str(options.web_port),
@@ -123,7 +123,7 @@ def _start_server(options: ViewOptions):
 
 def _stop_server(child) -> None:
     """End the Rerun server child (Ctrl-C ended the view)."""
-    from boat_dynamics.process import stop_processes
+    from boat_msgs_py.process import stop_processes
 
     if child is not None:
         stop_processes([child], timeout=5.0)

@@ -9,7 +9,7 @@ The surface server (node ``ocean_surface``) answers from the same physics
 
 - the sea state and the epoch from /ocean/wave_field (latched, stamped at simulation time 0);
 - the simulation time now: what the simulation writes every step into a shared 8-byte file
-  (``--time-file``; :class:`boat_dynamics.process.SharedTime`), so a zero-stamp request is
+  (``--time-file``; :class:`boat_msgs_py.process.SharedTime`), so a zero-stamp request is
   answered at the time the ocean node would have used, within a step;
 - ``precision``: the /ocean node's parameter, followed on /parameter_events.
 
@@ -95,7 +95,7 @@ def serve(time_file: str) -> int:
     """Run a :class:`SurfaceServer` until a signal or the end of stdin (the run is gone).
 
     Args:
-        time_file: the simulation's :class:`boat_dynamics.process.SharedTime` file.
+        time_file: the simulation's :class:`boat_msgs_py.process.SharedTime` file.
 
     Returns:
         The exit status, 0.
@@ -104,7 +104,7 @@ def serve(time_file: str) -> int:
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.signals import SignalHandlerOptions
 
-    from boat_dynamics.process import SharedTime, stop_on_signals, watch_stdin
+    from boat_msgs_py.process import SharedTime, stop_on_signals, watch_stdin
 
     stop = threading.Event()
     restore_signals = stop_on_signals(stop)

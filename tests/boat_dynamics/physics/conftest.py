@@ -3,12 +3,12 @@
 import numpy as np
 import pytest
 
-from boat_dynamics.physics.boat import BoatParams
-from boat_dynamics.physics.buoyancy import SamplePointBuoyancy
-from boat_dynamics.physics.hull import BoxHull, box_mesh
-from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.propulsion import Propulsion
-from boat_dynamics.physics.rudder import Rudder
+from boat_dynamics.physics.body.hull import BoxHull, box_mesh
+from boat_dynamics.physics.core.boat import BoatParams
+from boat_dynamics.physics.force_models.buoyancy import SamplePointBuoyancy
+from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.force_models.propulsion import Propulsion
+from boat_dynamics.physics.force_models.rudder import Rudder
 
 
 def make_boat(length=4.0, beam=2.0, height=1.0, density_ratio=0.5, com=(0.0, 0.0, 0.0),

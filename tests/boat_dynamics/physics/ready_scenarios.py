@@ -1,6 +1,6 @@
 """Scenarios as ``boatsim run`` steps them: parsed, then initialized by the pipeline."""
 
-from boat_dynamics.physics.pipeline import init_scenario
+from boat_dynamics.physics.core.pipeline import init_scenario
 from boat_dynamics.physics.scenario import Scenario, parse_scenario
 
 

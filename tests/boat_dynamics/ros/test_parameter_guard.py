@@ -7,7 +7,7 @@ callback directly. Nothing known raises there today, so the fault is injected.
 
 from rclpy.parameter import Parameter
 
-from boat_dynamics.physics.pipeline import init_scenario
+from boat_dynamics.physics.core.pipeline import init_scenario
 from boat_dynamics.physics.scenario import parse_scenario
 from boat_dynamics.ros.node import DynamicsNode, SimClock
 from ocean_sim.ros.node import OceanNode

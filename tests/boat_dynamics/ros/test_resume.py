@@ -10,9 +10,9 @@ import pytest
 import rclpy
 from std_msgs.msg import Float64
 
-from boat_dynamics.physics.pipeline import init_scenario
+from boat_dynamics.physics.core.pipeline import init_scenario
+from boat_dynamics.physics.core.snapshot import SnapshotError, load, save
 from boat_dynamics.physics.scenario import parse_scenario
-from boat_dynamics.physics.snapshot import SnapshotError, load, save
 from boat_dynamics.ros.node import DynamicsNode, SimClock
 from boat_msgs_py.tap import Tap
 

@@ -8,19 +8,19 @@ import numpy as np
 import pytest
 
 from boat_dynamics.cli import main
-from boat_dynamics.physics.hydro import (
+from boat_dynamics.physics.body.rigid_body import mass_matrix
+from boat_dynamics.physics.core.model import coefficients_key, hull_mesh
+from boat_dynamics.physics.core.pipeline import init_scenario
+from boat_dynamics.physics.core.tuning import equilibrium_height, hydrostatic_stiffness
+from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.potential_flow.hydro import (
     SHIPPED_COEFFICIENTS,
     coefficient_directories,
     find_coefficients,
     hydro_key,
     load_coefficients,
 )
-from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.model import coefficients_key, hull_mesh
-from boat_dynamics.physics.pipeline import init_scenario
-from boat_dynamics.physics.rigid_body import mass_matrix
 from boat_dynamics.physics.scenario import load_scenario, parse_scenario
-from boat_dynamics.physics.tuning import equilibrium_height, hydrostatic_stiffness
 from boat_dynamics.tools.bem_mesh import immersed_panels, mirror_symmetric
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -103,7 +103,7 @@ def test_moving_the_rotation_centre_is_exact():
     # The default box's file moved to the centre of mass of multi_boat's alpha (the same box,
     # CoM 0.2 m higher) against alpha's own file, solved separately: the same within 0.5 % of
     # each quantity's largest value (the solves' own differences).
-    from boat_dynamics.physics.hydro import moved
+    from boat_dynamics.physics.potential_flow.hydro import moved
 
     scenario = load_scenario(ROOT / "scenarios" / "multi_boat.yaml")
     alpha = scenario.boats[0].params
@@ -117,7 +117,7 @@ def test_moving_the_rotation_centre_is_exact():
 
 
 def test_froude_scaling_scales_periods_by_the_square_root_and_undoes_itself():
-    from boat_dynamics.physics.hydro import froude_scaled
+    from boat_dynamics.physics.potential_flow.hydro import froude_scaled
 
     ref = load_coefficients(REFERENCE)
     back = froude_scaled(froude_scaled(ref, 2.5), 1 / 2.5)
@@ -138,7 +138,7 @@ def test_the_estimate_of_a_box_of_other_proportions(scenario, name, period_bound
     # 6 x 2.5 x 1.2 m: -6 / -4 / -15 %; 12 x 4 x 2.5 m: +4 / +13 / -10 %; without any
     # coefficients the default box is 19-34 % short); damping ratios within a factor 3
     # (measured 0.4-1.5x).
-    from boat_dynamics.physics.hydro import estimate
+    from boat_dynamics.physics.potential_flow.hydro import estimate
 
     sc = load_scenario(ROOT / "scenarios" / f"{scenario}.yaml")
     p = next(b.params for b in sc.boats if b.name == name)
@@ -269,7 +269,7 @@ def test_the_otters_gap_resonances_are_found_and_said(capsys, tmp_path):
     # file has one. Without its gap modes `boatsim hydro` says so, and that the radiation
     # memory misses the file by 80 %; the shipped Otter's file carries its modes, and
     # `boatsim hydro` has nothing to say: the memory holds them as pole pairs.
-    from boat_dynamics.physics.hydro import SHIPPED_COEFFICIENTS, narrow_peaks
+    from boat_dynamics.physics.potential_flow.hydro import SHIPPED_COEFFICIENTS, narrow_peaks
 
     name = "box_2x1.04x0.4_d0.078_28cbe58ae1ba94d9.npz"
     box = ROOT / "tests" / "data" / "hydro" / "otter_box_pontoons.npz"

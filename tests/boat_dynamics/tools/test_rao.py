@@ -99,7 +99,7 @@ def test_a_bad_scenario_is_refused_naming_the_key(tmp_path, capsys):
 def test_the_potential_flow_curve_peaks_at_the_coupled_roll_resonance():
     # The plot's dense potential-flow curve (200 wavelengths): in beam seas the box's roll
     # peaks where its sway-coupled roll mode is (omega 3.067 rad/s: the complex root of
-    # det(-w^2 (M + A) - i w B + C) = 0, tests/boat_dynamics/physics/test_hydro.py).
+    # det(-w^2 (M + A) - i w B + C) = 0, tests/boat_dynamics/physics/potential_flow/test_hydro.py).
     from boat_dynamics.physics.scenario import parse_scenario
     from boat_dynamics.tools.rao import theory_curve
 

@@ -10,8 +10,8 @@ from boat_msgs.srv import SampleSurface
 from geometry_msgs.msg import Point
 from rcl_interfaces.msg import Parameter, ParameterEvent, ParameterValue
 
-from boat_dynamics.process import SharedTime
 from boat_msgs_py.convert import seconds_to_time, wave_field_to_msg
+from boat_msgs_py.process import SharedTime
 from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
 from ocean_sim.ros.surface_server import SurfaceServer
 
@@ -89,7 +89,7 @@ def test_the_shared_time_is_read_in_another_process(tmp_path):
     shared = SharedTime()
     try:
         shared.write(1234.5678)
-        read = subprocess.run([sys.executable, "-c", "import sys; from boat_dynamics.process "
+        read = subprocess.run([sys.executable, "-c", "import sys; from boat_msgs_py.process "
                                "import SharedTime; print(SharedTime(sys.argv[1]).read())",
                                str(shared.path)], capture_output=True, text=True, check=True)
         assert float(read.stdout) == 1234.5678

@@ -2,7 +2,7 @@
 
 The reader computes no physics: what a boat's own hydrostatics fix (its equilibrium, the
 damping the file leaves to derive) is asked for in ``BoatParams.derive``, and the boats start
-at rest at their initial poses; :func:`boat_dynamics.physics.pipeline.init` derives it and
+at rest at their initial poses; :func:`boat_dynamics.physics.core.pipeline.init` derives it and
 sets them afloat, once.
 
 The keys are the public contract of docs/DESIGN.md ("Scenario file"). Every refusal raises

@@ -10,19 +10,10 @@ from typing import Any
 
 import numpy as np
 
-from boat_dynamics.physics.carriage import Carriage
-from boat_dynamics.physics.commands import CommandScript
-from boat_dynamics.physics.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
-from boat_dynamics.physics.hull_lift import HULL_LIFT_MODELS
-from boat_dynamics.physics.hydro import (
-    HydroCoefficients,
-    HydroFileError,
-    coefficient_directories,
-    find_coefficients,
-    load_coefficients,
-)
-from boat_dynamics.physics.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.model import (
+from boat_dynamics.physics.body.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.physics.body.rigid_body import inertia_tensor
+from boat_dynamics.physics.core.commands import CommandScript
+from boat_dynamics.physics.core.model import (
     RADIATION_MODELS,
     WATER_VELOCITIES,
     BoatParams,
@@ -33,7 +24,17 @@ from boat_dynamics.physics.model import (
     coefficients_key,
     initial_state,
 )
-from boat_dynamics.physics.rigid_body import inertia_tensor
+from boat_dynamics.physics.force_models.carriage import Carriage
+from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.force_models.wind import DEFAULT_WIND_COEFFICIENTS, Windage
+from boat_dynamics.physics.potential_flow.hull_lift import HULL_LIFT_MODELS
+from boat_dynamics.physics.potential_flow.hydro import (
+    HydroCoefficients,
+    HydroFileError,
+    coefficient_directories,
+    find_coefficients,
+    load_coefficients,
+)
 from boat_dynamics.physics.scenario.models import (
     buoyancy_block,
     control_block,
@@ -55,7 +56,6 @@ from boat_dynamics.physics.scenario.read import (
 )
 from boat_dynamics.physics.scenario.sensors import sensors_block
 from boat_dynamics.physics.scenario.specs import BoatSpec, ScenarioError, SimulationSettings
-from boat_dynamics.physics.wind import DEFAULT_WIND_COEFFICIENTS, Windage
 
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
 DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
@@ -67,7 +67,7 @@ DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 #: pitch, where the radiation dominates (strip theory adds none; the quadratic heave drag of
 #: ``damping.quadratic``, C_d 1 on L B, takes a flat bottom's vortices). Journee's (1992) Wigley I
 #: towed at Fn 0.3 into a head sea of 1.25 L heaved 2.52 m/m; with 10 % of critical in heave and
-#: pitch it heaved 1.28, without 2.45 (tests/boat_dynamics/physics/test_towing_tank.py).
+#: pitch it heaved 1.28, without 2.45 (tests/boat_dynamics/physics/experiments/test_towing_tank.py).
 RADIATING_CRITICAL_RATIO = (0.0, 0.1, 0.0)
 
 
@@ -164,7 +164,7 @@ def _water_velocity(dd: Mapping[str, Any], dk: str, buoyancy) -> WaterVelocity:
     damping must act on the velocity through the water over the hull; taken at one surface
     point, the orbital velocity drives the hull a second time: Journee's Wigley III at zero
     speed heaved 0.409 m/m in a head sea of one boat length against 0.29 measured and 0.259
-    with ``hull`` (2026-12-03, tests/boat_dynamics/physics/test_towing_tank.py).
+    with ``hull`` (2026-12-03, tests/boat_dynamics/physics/experiments/test_towing_tank.py).
     """
     excited = isinstance(buoyancy, MeshBuoyancy) and buoyancy.pressure != "hydrostatic"
     default = "hull" if excited else "reference_point"
@@ -182,8 +182,8 @@ def _water_velocity(dd: Mapping[str, Any], dk: str, buoyancy) -> WaterVelocity:
 def _carriage(raw: Any, key: str) -> Carriage | None:
     """``carriage``: towed at ``speed`` m/s along the line it starts on; None without the block.
 
-    A towing tank's carriage (:mod:`boat_dynamics.physics.carriage`): heave, roll and pitch
-    free, sway and yaw held; its force, the resistance, is :attr:`.pipeline.Step.towing`.
+    A towing tank's carriage (:mod:`boat_dynamics.physics.force_models.carriage`): heave, roll and
+    pitch free, sway and yaw held; its force, the resistance, is :attr:`.pipeline.Step.towing`.
     """
     cd = mapping(raw, key)
     only(cd, key, ("speed",))
@@ -196,8 +196,8 @@ def _mooring_period(raw: Any, key: str, towed: bool) -> float | None:
     """``mooring``: a soft mooring's natural period, s; None without the block (free).
 
     A towing tank's soft springs on x, y and heading, anchored where the boat starts
-    (:mod:`boat_dynamics.physics.mooring`): for seakeeping at zero speed, a period of many
-    wave periods so that they leave the wave-frequency motion alone.
+    (:mod:`boat_dynamics.physics.force_models.mooring`): for seakeeping at zero speed, a period of
+    many wave periods so that they leave the wave-frequency motion alone.
     """
     md = mapping(raw, key)
     only(md, key, ("period",))
@@ -258,7 +258,7 @@ def _windage(d: Mapping[str, Any], key: str) -> Windage:
     """``windage``: the areas the wind acts on and Fossen's c_x, c_y, c_n.
 
     Areas absent: from the hull above its waterline (``pipeline.init``); coefficients absent:
-    :data:`~boat_dynamics.physics.wind.DEFAULT_WIND_COEFFICIENTS`.
+    :data:`~boat_dynamics.physics.force_models.wind.DEFAULT_WIND_COEFFICIENTS`.
     """
     only(d, key, ("frontal_area", "lateral_area", "coefficients"))
     for k in ("frontal_area", "lateral_area"):
@@ -331,7 +331,8 @@ def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, Hull
 
 #: How far the centre of mass may lie from the hull's reference point, in hull sizes (the
 #: largest extent): beyond, the hull's own numbers are lost in rounding (4.5e15 m divided by
-#: zero in the equilibrium search, found by tests/boat_dynamics/physics/test_scenario_fuzz.py).
+#: zero in the equilibrium search, found by
+#: tests/boat_dynamics/physics/scenario/test_scenario_fuzz.py).
 COM_REACH = 10.0
 
 
@@ -421,9 +422,10 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
     """``hydrodynamics``: the hull's coefficient file (``coefficients``) and ``radiation``.
 
     ``coefficients``: a path (relative ones from the scenario's directory), or ``auto``: the
-    file of this hull's key (:func:`~boat_dynamics.physics.model.coefficients_key`) in
-    :func:`~boat_dynamics.physics.hydro.coefficient_directories`, or, when there is none, an
-    estimate (:func:`~boat_dynamics.physics.hydro.estimate`, made by ``pipeline.init``). The
+    file of this hull's key (:func:`~boat_dynamics.physics.core.model.coefficients_key`) in
+    :func:`~boat_dynamics.physics.potential_flow.hydro.coefficient_directories`, or, when there is
+    none, an estimate (:func:`~boat_dynamics.physics.potential_flow.hydro.estimate`, made by
+    ``pipeline.init``). The
     file must have been solved about the boat's centre of mass. ``radiation``
     (:data:`~.model.RadiationModel`, default ``cummins``) only with ``coefficients``.
 
@@ -477,7 +479,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
 def _initial(params: BoatParams, idd: Mapping[str, Any], ik: str) -> BoatState:
     """``initial_pose``: the state at rest there (hull reference point, degrees).
 
-    At rest: :func:`boat_dynamics.physics.pipeline.init` sets it afloat in the waves.
+    At rest: :func:`boat_dynamics.physics.core.pipeline.init` sets it afloat in the waves.
     """
     position = vector(idd, "position", ik, 3, [0.0, 0.0, 0.0],
                       unit=f"m, world frame, each within +-{MAX_POSITION:g}")

@@ -9,13 +9,22 @@ from typing import Any
 
 import numpy as np
 
-from boat_dynamics.physics.buoyancy import CURVES, POINT_DIRECTIONS, SamplePointBuoyancy
-from boat_dynamics.physics.control import ATTITUDES, CONTROL_MODES, ControlSettings
-from boat_dynamics.physics.hull import BoxHull, HullMesh
-from boat_dynamics.physics.hull_drag import HullDrag
-from boat_dynamics.physics.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
-from boat_dynamics.physics.propulsion import MAX_THRUSTERS, Propulsion
-from boat_dynamics.physics.rudder import DEFAULT_LIFT_COEFFICIENT, RUDDER_MODELS, Rudder
+from boat_dynamics.physics.body.hull import BoxHull, HullMesh
+from boat_dynamics.physics.force_models.buoyancy import (
+    CURVES,
+    POINT_DIRECTIONS,
+    SamplePointBuoyancy,
+)
+from boat_dynamics.physics.force_models.control import ATTITUDES, CONTROL_MODES, ControlSettings
+from boat_dynamics.physics.force_models.hull_drag import HullDrag
+from boat_dynamics.physics.force_models.mesh_buoyancy import PRESSURE_MODELS, MeshBuoyancy
+from boat_dynamics.physics.force_models.propulsion import MAX_THRUSTERS, Propulsion
+from boat_dynamics.physics.force_models.rudder import (
+    DEFAULT_LIFT_COEFFICIENT,
+    RUDDER_MODELS,
+    Rudder,
+)
+from boat_dynamics.physics.force_models.slamming import SLAMMING_MODELS, Slamming
 from boat_dynamics.physics.scenario.read import (
     ROS_NAME_RULE,
     choice,
@@ -29,7 +38,6 @@ from boat_dynamics.physics.scenario.read import (
     vector,
 )
 from boat_dynamics.physics.scenario.specs import ScenarioError
-from boat_dynamics.physics.slamming import SLAMMING_MODELS, Slamming
 
 
 def buoyancy_block(bd: Mapping[str, Any], bk: str, hull: BoxHull, mesh: HullMesh

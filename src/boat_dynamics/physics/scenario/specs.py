@@ -8,8 +8,8 @@ from typing import Literal, get_args
 
 import numpy as np
 
-from boat_dynamics.physics.commands import CommandScript
-from boat_dynamics.physics.model import BoatParams, BoatState
+from boat_dynamics.physics.core.commands import CommandScript
+from boat_dynamics.physics.core.model import BoatParams, BoatState
 from boat_dynamics.physics.sensors import Datum, SensorSpec
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.environment import Environment

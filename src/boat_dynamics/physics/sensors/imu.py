@@ -30,12 +30,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from boat_dynamics.physics.model import BoatState
-from boat_dynamics.physics.rigid_body import (
+from boat_dynamics.physics.body.rigid_body import (
     quat_from_rotation_vector,
     quat_multiply,
     rotation_matrix,
 )
+from boat_dynamics.physics.core.model import BoatState
 from boat_dynamics.physics.sensors.noise import gauss_markov, random_walk, standard_normal
 
 __all__ = ["ImuReading", "ImuSpec", "ImuState", "InertialNoise", "imu_start", "measure_imu",

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from boat_dynamics.physics.rigid_body import quat_from_rotation_vector, quat_multiply
+from boat_dynamics.physics.body.rigid_body import quat_from_rotation_vector, quat_multiply
 from boat_dynamics.physics.sensors.noise import standard_normal
 
 __all__ = ["OdometryNoise", "OdometryReading", "OdometrySpec", "measure_odometry"]

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from boat_dynamics.physics.model import BoatState
-from boat_dynamics.physics.rigid_body import quat_from_euler
+from boat_dynamics.physics.body.rigid_body import quat_from_euler
+from boat_dynamics.physics.core.model import BoatState
 from boat_dynamics.physics.sensors import (
     ImuSpec,
     InertialNoise,
@@ -136,8 +136,8 @@ def test_the_same_key_gives_the_same_readings_and_another_seed_others():
 
 
 def test_an_imu_on_a_boat_floating_in_still_water_reads_g_within_its_noise():
-    from boat_dynamics.physics.boat import BoatInputs, step
-    from boat_dynamics.physics.pipeline import init_scenario
+    from boat_dynamics.physics.core.boat import BoatInputs, step
+    from boat_dynamics.physics.core.pipeline import init_scenario
     from boat_dynamics.physics.scenario import parse_scenario
     from ocean_sim.physics.waves import WaveField
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from boat_dynamics.physics.rigid_body import quat_to_euler
+from boat_dynamics.physics.body.rigid_body import quat_to_euler
 from boat_dynamics.physics.sensors import OdometryNoise, OdometrySpec, measure_odometry, stream_key
 
 

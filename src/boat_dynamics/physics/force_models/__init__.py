@@ -1,0 +1,1 @@
+"""One module per force model, each a function returning force and torque."""

@@ -1,0 +1,1 @@
+"""Linear potential flow: a hull's coefficients, radiation, diffraction, speed terms."""
