@@ -28,6 +28,7 @@ from typing import Literal, get_args
 import numpy as np
 
 from ocean_sim.physics.constants import GRAVITY, TWO_PI
+from ocean_sim.physics.errors import InvalidValueError
 
 __all__ = [
     "INVERSION_MAX_ITERATIONS",
@@ -71,7 +72,7 @@ INVERSION_MAX_ITERATIONS = 60
 MAX_COMPONENTS = 1000
 
 
-class InvalidSeaStateError(ValueError):
+class InvalidSeaStateError(InvalidValueError):
     """A sea state that the Gerstner model refuses.
 
     Attributes:
@@ -81,10 +82,7 @@ class InvalidSeaStateError(ValueError):
     """
 
     def __init__(self, key: str, value: object, allowed: str) -> None:
-        self.key = key
-        self.value = value
-        self.allowed = allowed
-        super().__init__(f"{key} = {value!r} is not allowed: {allowed}")
+        super().__init__(key, value, allowed, f"{key} = {value!r} is not allowed: {allowed}")
 
 
 @dataclass(frozen=True)

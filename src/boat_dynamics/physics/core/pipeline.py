@@ -40,6 +40,7 @@ from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy, panel
 from boat_dynamics.physics.force_models.propulsion import lagged_throttle
 from boat_dynamics.physics.potential_flow.radiation import advance
 from ocean_sim.physics.environment import Environment
+from ocean_sim.physics.errors import InvalidValueError
 from ocean_sim.physics.waves import WaveField, slope_orbit_velocity
 
 if TYPE_CHECKING:
@@ -48,7 +49,7 @@ if TYPE_CHECKING:
 __all__ = ["InitError", "Step", "afloat", "init", "init_scenario", "start", "step"]
 
 
-class InitError(ValueError):
+class InitError(InvalidValueError):
     """A boat that cannot be initialized (its hull sinks).
 
     Attributes:
@@ -59,8 +60,9 @@ class InitError(ValueError):
     """
 
     def __init__(self, boat: int, key: str, value: object, allowed: str) -> None:
-        self.boat, self.key, self.value, self.allowed = boat, key, value, allowed
-        super().__init__(f"boat {boat}: {key}: {value!r} is not allowed: {allowed}")
+        self.boat = boat
+        super().__init__(key, value, allowed,
+                         f"boat {boat}: {key}: {value!r} is not allowed: {allowed}")
 
 
 @dataclass(frozen=True)

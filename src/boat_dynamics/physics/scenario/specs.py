@@ -13,13 +13,14 @@ from boat_dynamics.physics.core.model import BoatParams, BoatState
 from boat_dynamics.physics.sensors import Datum, SensorSpec
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.environment import Environment
+from ocean_sim.physics.errors import InvalidValueError
 from ocean_sim.physics.waves import (
     Precision,
     WaveField,
 )
 
 
-class ScenarioError(ValueError):
+class ScenarioError(InvalidValueError):
     """A scenario that cannot be run.
 
     Attributes:
@@ -29,10 +30,8 @@ class ScenarioError(ValueError):
     """
 
     def __init__(self, key: str, value: object, allowed: str) -> None:
-        self.key = key
-        self.value = value
-        self.allowed = allowed
-        super().__init__(f"{key}: {shortened(value)} is not allowed: {allowed}")
+        super().__init__(key, value, allowed,
+                         f"{key}: {shortened(value)} is not allowed: {allowed}")
 
 
 _SHORT = reprlib.Repr()
