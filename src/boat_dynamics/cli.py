@@ -101,6 +101,8 @@ def _parser() -> argparse.ArgumentParser:
     teleop = verbs.add_parser("teleop", help="drive a boat from the keyboard")
     teleop.add_argument("--ns", default="", metavar="NAME",
                         help="the boat's namespace (default: the root namespace)")
+    for verb, sub in verbs.choices.items():
+        sub.set_defaults(handler=_HANDLERS[verb])
     return parser
 
 
@@ -770,66 +772,74 @@ def _refuse_boat(path, exc, index: int) -> int:
     return 2
 
 
+def _record(args: argparse.Namespace) -> int:
+    from boat_dynamics.tools.recording import record
+
+    return record(args.topics, args.output, exclude=set(args.exclude_topics))
+
+
+def _surface(args: argparse.Namespace) -> int:
+    from ocean_sim.ros.surface_server import serve
+
+    return serve(args.time_file)
+
+
+def _plot(args: argparse.Namespace) -> int:
+    from boat_dynamics.tools.plot import plot_bag
+
+    for path in plot_bag(args.bag, args.output, args.scenario):
+        print(f"boatsim: wrote {path}")
+    return 0
+
+
+def _replay(args: argparse.Namespace) -> int:
+    from boat_dynamics.tools.replay import replay
+
+    return replay(args.bag, args.topics, args.rate, args.timeout)
+
+
+def _teleop(args: argparse.Namespace) -> int:
+    from boat_dynamics.tools.teleop import teleop
+
+    return teleop(args.ns)
+
+
+#: Each verb's handler: (parsed arguments) -> exit status.
+_HANDLERS = {
+    "run": _run, "_node": _run, "_surface": _surface, "query": _query, "compare": _compare,
+    "topic": _introspect, "node": _introspect, "param": _introspect, "rao": _rao,
+    "hydro": _hydro, "view": _view, "record": _record, "reindex": lambda a: _reindex(a.bag),
+    "plot": _plot, "replay": _replay, "teleop": _teleop,
+}
+
+
+def _user_errors() -> tuple[type[Exception], ...]:
+    """What a handler raises for a user's bad input: a value, a bag, a path, a recording."""
+    from boat_dynamics.tools.bags import BagError
+    from boat_dynamics.tools.plot import PlotError
+    from boat_dynamics.tools.recording import RecordError
+    from boat_dynamics.tools.replay import ReplayError
+    from ocean_sim.physics.errors import InvalidValueError
+
+    return (InvalidValueError, BagError, PlotError, RecordError, ReplayError)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of ``boatsim``; returns the exit status."""
+    """Entry point of ``boatsim``; returns the exit status.
+
+    The one place that turns a user's error into ``boatsim VERB: error: ...`` and exit status
+    2 (a bad option: argparse's own message and 2); Ctrl-C exits 0.
+    """
     try:
         args = _parser().parse_args(argv)
-        if args.verb in ("run", "_node"):
-            return _run(args)
-        if args.verb == "query":
-            return _query(args)
-        if args.verb == "compare":
-            return _compare(args)
-        if args.verb in ("topic", "node", "param"):
-            return _introspect(args)
-        if args.verb == "rao":
-            return _rao(args)
-        if args.verb == "hydro":
-            return _hydro(args)
-        if args.verb == "view":
-            return _view(args)
-        if args.verb == "record":
-            from boat_dynamics.tools.recording import RecordError, record
-
-            try:
-                return record(args.topics, args.output, exclude=set(args.exclude_topics))
-            except RecordError as exc:
-                print(f"boatsim record: error: {exc}", file=sys.stderr)
-                return 2
-        if args.verb == "_surface":
-            from ocean_sim.ros.surface_server import serve
-
-            return serve(args.time_file)
-        if args.verb == "reindex":
-            return _reindex(args.bag)
-        if args.verb == "plot":
-            from boat_dynamics.physics.scenario import ScenarioError
-            from boat_dynamics.tools.bags import BagError
-            from boat_dynamics.tools.plot import PlotError, plot_bag
-
-            try:
-                for path in plot_bag(args.bag, args.output, args.scenario):
-                    print(f"boatsim: wrote {path}")
-                return 0
-            except (BagError, PlotError, ScenarioError) as exc:
-                print(f"boatsim plot: error: {exc}", file=sys.stderr)
-                return 2
-        if args.verb == "replay":
-            from boat_dynamics.tools.bags import BagError
-            from boat_dynamics.tools.replay import ReplayError, replay
-
-            try:
-                return replay(args.bag, args.topics, args.rate, args.timeout)
-            except (BagError, ReplayError) as exc:
-                print(f"boatsim replay: error: {exc}", file=sys.stderr)
-                return 2
-        if args.verb == "teleop":
-            from boat_dynamics.tools.teleop import teleop
-
-            return teleop(args.ns)
+        return args.handler(args)
     except KeyboardInterrupt:
         return 0
-    return 2
+    except Exception as exc:
+        if not isinstance(exc, _user_errors()):
+            raise
+        print(f"boatsim {args.verb}: error: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

@@ -62,3 +62,25 @@ def test_replay_rate_is_a_speed_factor_not_seconds(capsys):
     assert exit_.value.code == 2
     err = capsys.readouterr().err
     assert "--rate: '0': must be a finite speed factor" in err and "seconds" not in err
+
+
+def test_a_users_error_escaping_a_verb_is_one_line_and_exit_2(monkeypatch, capsys):
+    """cli.main is the one place: any refused value that a verb does not catch itself."""
+    from boat_dynamics import cli
+    from ocean_sim.physics.errors import InvalidValueError
+
+    def refuse(args):
+        raise InvalidValueError("boats[0].mass", -3.0, "must be in (0, inf] kg")
+
+    monkeypatch.setitem(cli._HANDLERS, "query", refuse)
+    assert cli.main(["query", "1", "2"]) == 2
+    err = capsys.readouterr().err
+    assert err == ("boatsim query: error: boats[0].mass: -3.0 is not allowed: "
+                   "must be in (0, inf] kg\n")
+
+    def crash(args):
+        raise ZeroDivisionError("a bug, not the user's")
+
+    monkeypatch.setitem(cli._HANDLERS, "query", crash)
+    with pytest.raises(ZeroDivisionError):  # a bug still shows its traceback
+        cli.main(["query", "1", "2"])
