@@ -633,17 +633,18 @@ def _run_node(args: argparse.Namespace, scenario, path) -> int:
     from boat_dynamics.physics.core.pipeline import InitError
     from boat_dynamics.physics.core.snapshot import SnapshotError
     from boat_dynamics.ros.barrier import shard_slice
-    from boat_dynamics.ros.runner import RunOptions, run
+    from boat_dynamics.ros.runner import ProcessRole, RunOptions, run
 
     if (args.epoch is None) == (args.ready_fd is None):
         print("boatsim _node: error: exactly one of --epoch and --ready-fd", file=sys.stderr)
         return 2
-    options = RunOptions(duration=args.duration, role=args.role, shard=args.shard,
-                         shards=args.shards, fast=args.fast, lockstep=args.lockstep,
+    options = RunOptions(duration=args.duration, fast=args.fast, lockstep=args.lockstep,
                          record=args.record, exclude_topics=tuple(args.exclude_topics),
-                         epoch=args.epoch, ready_fd=args.ready_fd, supervised=True,
-                         await_recorder=args.await_recorder, checkpoint=args.checkpoint,
-                         resume=args.resume)
+                         process=ProcessRole(role=args.role, shard=args.shard,
+                                             shards=args.shards, epoch=args.epoch,
+                                             ready_fd=args.ready_fd, supervised=True,
+                                             await_recorder=args.await_recorder,
+                                             checkpoint=args.checkpoint, resume=args.resume))
     try:
         return run(scenario, options, status=open(os.devnull, "w") if args.quiet
                    else sys.stderr)
@@ -660,7 +661,7 @@ def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     """``run --processes`` / ``--shards N``: the ocean and the shards, each a process."""
     from boat_dynamics.physics.core.pipeline import InitError, start
     from boat_dynamics.ros.processes import run_processes
-    from boat_dynamics.ros.runner import RunOptions
+    from boat_dynamics.ros.runner import ProcessRole, RunOptions
     from boat_dynamics.tools.recording import RecordError
 
     count = len(scenario.boats) if args.processes else args.shards
@@ -674,7 +675,7 @@ def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     try:
         return run_processes(scenario, str(path), RunOptions(
             duration=args.duration, record=args.record, fast=fast, lockstep=args.lockstep,
-            shards=count, exclude_topics=tuple(args.exclude_topics)))
+            exclude_topics=tuple(args.exclude_topics), process=ProcessRole(shards=count)))
     except RecordError as exc:
         print(f"boatsim: error: {exc}", file=sys.stderr)
         return 2
@@ -684,7 +685,7 @@ def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     """``run --only ocean | shard K/N``: one process of a sharded run, started alone."""
     from boat_dynamics.physics.core.pipeline import InitError
     from boat_dynamics.ros.barrier import shard_slice
-    from boat_dynamics.ros.runner import RunOptions, run
+    from boat_dynamics.ros.runner import ProcessRole, RunOptions, run
     from boat_dynamics.tools.recording import RecordError
 
     def refuse(message: str) -> int:
@@ -714,9 +715,10 @@ def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     if (problem := _too_many_shards(shard[1] if shard else shards,
                                     len(scenario.boats))) is not None:
         return refuse(problem)
-    options = RunOptions(role=role, shard=shard, shards=shards, fast=True,
-                         lockstep=args.lockstep, duration=args.duration, record=args.record,
-                         exclude_topics=tuple(args.exclude_topics), standalone=True)
+    options = RunOptions(fast=True, lockstep=args.lockstep, duration=args.duration,
+                         record=args.record, exclude_topics=tuple(args.exclude_topics),
+                         process=ProcessRole(role=role, shard=shard, shards=shards,
+                                             standalone=True))
     try:
         return run(scenario, options)
     except RecordError as exc:

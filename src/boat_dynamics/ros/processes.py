@@ -128,7 +128,7 @@ def _children(scenario: Scenario, path: str, options: RunOptions,
     def part(name: str) -> list[str]:
         return ["--record", str(parts / name)] if parts is not None else []
 
-    count = options.shards
+    count = options.process.shards
     out = [_Child("ocean", ["ocean", *common, *part("ocean"), "--quiet",
                             *(["--shards", str(count)] if options.fast else [])])]
     for k in range(count):
@@ -291,7 +291,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
                   status: TextIO = sys.stderr) -> int:
     """Run ``scenario`` (read from ``path``) in processes; returns the exit status.
 
-    ``options.shards`` dynamics processes and an ocean process.
+    ``options.process.shards`` dynamics processes and an ocean process.
 
     Raises:
         RecordError: the bag directory of ``options.record`` already exists.
@@ -313,8 +313,8 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     try:
         for c in children:
             _spawn(c, handshake=True)
-        kind = "boats" if options.shards == len(scenario.boats) else "shards"
-        print(f"boatsim: started {len(children)} processes (ocean + {options.shards} {kind}"
+        kind = "boats" if options.process.shards == len(scenario.boats) else "shards"
+        print(f"boatsim: started {len(children)} processes (ocean + {options.process.shards} {kind}"
               f"{', one clock: ' + _clock_words(options) if options.fast else ''}): pids "
               f"{' '.join(str(c.proc.pid) for c in children)}"
               + _recording_words(options, recorder, parts), file=status)

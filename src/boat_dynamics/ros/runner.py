@@ -51,7 +51,7 @@ from boat_msgs_py.qos import RECORD_QOS
 from boat_msgs_py.tap import Tap
 from ocean_sim.ros.node import OceanNode
 
-__all__ = ["CHECKPOINT_PERIOD", "EXIT_STOPPED", "Lag", "RunOptions", "run"]
+__all__ = ["CHECKPOINT_PERIOD", "EXIT_STOPPED", "Lag", "ProcessRole", "RunOptions", "run"]
 
 #: The exit status of a run that went to its end with a boat stopped because its state diverged
 #: (the node's watchdog): not a crash, so a supervisor does not restart it.
@@ -89,13 +89,13 @@ CHECKPOINT_PERIOD = 1.0
 
 
 @dataclass(frozen=True)
-class RunOptions:
-    """How to run a scenario.
+class ProcessRole:
+    """Which process of a run this is (one process: all of it).
+
+    What the parent of ``--processes`` / ``--shards`` tells its children (``boatsim _node``),
+    or ``--only`` a process started alone.
 
     Attributes:
-        fast: run as fast as possible and publish /clock (else paced to real time).
-        duration: s of simulated time, None = until stopped.
-        record: directory of a rosbag2 (MCAP) bag to write, or None.
         role: ``all`` (ocean and every boat), ``ocean`` or ``shard`` (one process of
             ``--processes`` or ``--shards``).
         shard: a ``shard`` role's (K, N): its boats are share K of N
@@ -106,8 +106,6 @@ class RunOptions:
             as long as it takes, saying so.
         epoch: s (wall clock) of simulation time 0, shared by the processes of a run; None =
             now (or 0 with ``fast``).
-        lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
-        exclude_topics: topics the bag leaves out.
         ready_fd: a ``--processes`` child's start-up handshake: write "ready" to this file
             descriptor once the nodes exist (and, with ``await_recorder``, the recorder
             subscribes to every publisher), then take the epoch from the parent's
@@ -122,21 +120,37 @@ class RunOptions:
             step count, its boats' state and command intake) instead of the scenario's start.
     """
 
-    fast: bool = False
-    duration: float | None = None
-    record: str | None = None
     role: str = "all"
     shard: tuple[int, int] | None = None
     shards: int = 0
     standalone: bool = False
     epoch: float | None = None
-    lockstep: bool = False
-    exclude_topics: tuple[str, ...] = ()
     ready_fd: int | None = None
     supervised: bool = False
     await_recorder: bool = False
     checkpoint: str | None = None
     resume: str | None = None
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How the user asked to run a scenario (``boatsim run``'s options), and which process.
+
+    Attributes:
+        fast: run as fast as possible and publish /clock (else paced to real time).
+        duration: s of simulated time, None = until stopped.
+        record: directory of a rosbag2 (MCAP) bag to write, or None.
+        lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
+        exclude_topics: topics the bag leaves out.
+        process: this process's part in the run (one process: the default, all of it).
+    """
+
+    fast: bool = False
+    duration: float | None = None
+    record: str | None = None
+    lockstep: bool = False
+    exclude_topics: tuple[str, ...] = ()
+    process: ProcessRole = ProcessRole()
 
 
 def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
@@ -264,29 +278,29 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
     sim = scenario.simulation
     fast = options.fast or not sim.realtime
     # one process in real time: provisional, until the loop starts (_Loop._epoch_at_loop_start)
-    epoch = options.epoch if options.epoch is not None else (0.0 if fast else time.time())
+    given = options.process.epoch
+    epoch = given if given is not None else (0.0 if fast else time.time())
     clock = SimClock(rate_hz=sim.rate_hz, epoch=epoch)
-    if options.epoch is not None and not fast:  # joining a run that started at the epoch
+    if options.process.epoch is not None and not fast:  # joining a run that started at the epoch
         clock.steps = max(0, round((time.time() - epoch) * sim.rate_hz))
     advertise = advertises_wrenches(sim.wrench_topics, len(scenario.boats),
-                                    options.await_recorder)  # the whole fleet's count
-    if options.role == "shard":  # a share of the boats, joining at clock.t
+                                    options.process.await_recorder)  # the whole fleet's count
+    if options.process.role == "shard":  # a share of the boats, joining at clock.t
         scenario = replace(scenario, boats=scenario.boats[shard_slice(
-            *options.shard, len(scenario.boats))])
-    if options.role in ("all", "shard"):  # derived parameters, afloat at clock.t: once
+            *options.process.shard, len(scenario.boats))])
+    if options.process.role in ("all", "shard"):  # derived parameters, afloat at clock.t: once
         scenario = init_scenario(scenario, clock.t)
     bag = (BagWriter(options.record, exclude=set(options.exclude_topics)) if options.record
            else None)
     stop = threading.Event()
     restore_signals = stop_on_signals(stop)
-    parent = _Parent(stop) if options.supervised or options.ready_fd is not None else None
+    child = options.process.supervised or options.process.ready_fd is not None
+    parent = _Parent(stop) if child else None
     dds_note = use_profile()  # before the process's first participant
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     loop = _Loop(scenario, options, clock, fast, bag, stop,
-                 _Status(status, len(scenario.boats), realtime=not fast))
-    loop.parent = parent
-    loop.dds_note = dds_note
-    loop.advertise_wrenches = advertise
+                 _Status(status, len(scenario.boats), realtime=not fast), parent=parent,
+                 dds_note=dds_note, advertise_wrenches=advertise)
     code = 0
     try:
         code = loop.run()
@@ -333,7 +347,7 @@ def _lockstep_role(options: RunOptions) -> LockstepRole:
     """The dynamics node's part in a lockstep replay: a shard's clock owner follows it."""
     if not options.lockstep:
         return "none"
-    return "announce" if options.shard is not None else "follow"
+    return "announce" if options.process.shard is not None else "follow"
 
 
 def _dynamics_name(scenario: Scenario, options: RunOptions) -> str:
@@ -342,11 +356,11 @@ def _dynamics_name(scenario: Scenario, options: RunOptions) -> str:
     A shard's is ``boat_dynamics_<boat>`` when it has one named boat (as ``--processes``
     makes them), else ``boat_dynamics_shard_<K>``.
     """
-    if options.shard is None:
+    if options.process.shard is None:
         return names.DYNAMICS_NODE
     if len(scenario.boats) == 1 and scenario.boats[0].name:
         return f"{names.DYNAMICS_NODE}_{scenario.boats[0].name}"
-    return f"{names.DYNAMICS_NODE}_shard_{options.shard[0]}"
+    return f"{names.DYNAMICS_NODE}_shard_{options.process.shard[0]}"
 
 
 #: The step barrier's protocol and a lockstep node's word to the replayer, not recorded (as
@@ -393,10 +407,16 @@ class _Loop:
         bag: the bag to record to, or None.
         stop: set by SIGINT / SIGTERM.
         display: the status line.
+        parent: a --processes child's link to its parent, or None.
+        dds_note: why boatsim's Fast DDS profile is not in use, or None.
+        advertise_wrenches: every wrench/<source> publisher from the start (else made on
+            subscription).
     """
 
     def __init__(self, scenario: Scenario, options: RunOptions, clock: SimClock, fast: bool,
-                 bag: BagWriter | None, stop: threading.Event, display: _Status) -> None:
+                 bag: BagWriter | None, stop: threading.Event, display: _Status, *,
+                 parent: _Parent | None = None, dds_note: str | None = None,
+                 advertise_wrenches: bool = True) -> None:
         self.scenario, self.options, self.clock, self.fast = scenario, options, clock, fast
         self.bag, self.stop, self.display = bag, stop, display
         self._told_bag_failed = False  # a failed bag write was logged
@@ -406,15 +426,15 @@ class _Loop:
         self.dynamics = self.ocean = self.recorder = None
         self.member: StepMember | None = None  # a shard's side of the step barrier
         self.conductor: StepConductor | None = None  # the clock owner's side
-        self.parent: _Parent | None = None  # a --processes child's parent
+        self.parent = parent
         self.surface_server: subprocess.Popen | None = None
         self.shared_time: SharedTime | None = None  # the simulation time, for the server
         self.abandoned = False  # the DDS endpoints are left to the process's exit
         self.logger = rclpy.logging.get_logger("boatsim")  # the first node's, once made
         self.nodes = []
         self.participants = Participants()  # the nodes' participants but the default one
-        self.dds_note: str | None = None  # why boatsim's Fast DDS profile is not in use
-        self.advertise_wrenches = True  # every wrench/<source> publisher from the start
+        self.dds_note = dds_note
+        self.advertise_wrenches = advertise_wrenches
         # fast mode, or real time behind the wall clock: the next callback round (monotonic)
         self._next_spin = 0.0
 
@@ -424,8 +444,8 @@ class _Loop:
         scenario = self.scenario
         tap = bag.tap(clock.stamp_ns) if bag is not None else None
         # the epoch comes with the parent's go, or (one process, real time) at the loop's start
-        deferred = options.ready_fd is not None or self._epoch_at_loop_start
-        if options.role == "all":  # the surface service beside this process (module docs)
+        deferred = options.process.ready_fd is not None or self._epoch_at_loop_start
+        if options.process.role == "all":  # the surface service beside this process (module docs)
             # its own session: a terminal's Ctrl-C is this process's to handle
             self.shared_time = SharedTime()
             self.surface_server = start_child(["_surface", "--time-file",
@@ -433,23 +453,24 @@ class _Loop:
                                               start_new_session=True)
         # The ocean first: its participant discovers the boats' endpoints while they are made
         # (on the other core), and the wave field reaches the dynamics node before them.
-        if options.role in ("all", "ocean"):
+        if options.process.role in ("all", "ocean"):
             self._make_ocean(tap, deferred)
-        if options.role in ("all", "shard"):
-            self.dynamics = DynamicsNode(scenario, clock, publish_clock=fast and not options.shard,
+        if options.process.role in ("all", "shard"):
+            self.dynamics = DynamicsNode(scenario, clock,
+                                         publish_clock=fast and not options.process.shard,
                                          tap=tap, name=_dynamics_name(scenario, options),
-                                         deferred=deferred or options.resume is not None,
+                                         deferred=deferred or options.process.resume is not None,
                                          stopped=self.stop.is_set,
                                          lockstep=_lockstep_role(options),
                                          advertise_wrenches=self.advertise_wrenches,
                                          context=self.participants.new() if self.nodes else None)
             self.nodes.append(self.dynamics)
-            if options.resume is not None:
+            if options.process.resume is not None:
                 self._resume(deferred)
-            if fast and options.shard is not None:
+            if fast and options.process.shard is not None:
                 # in the dynamics node's participant: they never talk to each other, and a
                 # participant of its own made 100 boats over 2 shards 2.5x slower (measured)
-                self.member = StepMember(*options.shard, scenario.digest,
+                self.member = StepMember(*options.process.shard, scenario.digest,
                                          context=self.dynamics.context)
                 self.nodes.append(self.member)
         self.logger = (self.dynamics if self.dynamics is not None else self.nodes[0]).get_logger()
@@ -458,7 +479,7 @@ class _Loop:
                              "each DDS endpoint is paired with every other of its participant "
                              "as it is made: start-up grows as the square of the fleet "
                              f"(boat_dynamics/ros/{PROFILE.name} avoids it)")
-        if bag is not None and options.role != "shard":
+        if bag is not None and options.process.role != "shard":
             self._make_recorder(tap)
         for n in self.nodes:
             if n is not self.member and n is not self.conductor:  # they spin on their own
@@ -469,13 +490,13 @@ class _Loop:
         options, clock, scenario = self.options, self.clock, self.scenario
         self.ocean = OceanNode(scenario.sea, now=lambda: clock.t,
                                epoch=None if deferred else clock.epoch, tap=tap,
-                               serve_surface=options.role == "ocean",
+                               serve_surface=options.process.role == "ocean",
                                surface_centers=(lambda: self.dynamics.boat_positions())
-                               if options.role == "all" else None,
+                               if options.process.role == "all" else None,
                                environment=scenario.environment)
         self.nodes.append(self.ocean)
-        if self.fast and options.shards:
-            self.conductor = StepConductor(options.shards, scenario.digest, clock,
+        if self.fast and options.process.shards:
+            self.conductor = StepConductor(options.process.shards, scenario.digest, clock,
                                            self.duration, options.lockstep, tap,
                                            context=self.ocean.context)  # as the member
             self.nodes.append(self.conductor)
@@ -492,7 +513,8 @@ class _Loop:
         self.recorder = TopicRecorder(self.recorder_node, self.bag, self.clock.stamp_ns,
                                       skip=tap.topics | _BARRIER_TOPICS,
                                       qos=RECORD_QOS,
-                                      skip_if=_tapped_by_shards if self.options.shards else None,
+                                      skip_if=(_tapped_by_shards if self.options.process.shards
+                                               else None),
                                       drop={names.PARAMETER_EVENTS: declares_only})
         if self.conductor is None:
             self.recorder.discover()
@@ -506,7 +528,7 @@ class _Loop:
             its state diverged.
         """
         self._make_nodes()
-        if self.options.ready_fd is not None and not self._handshake():
+        if self.options.process.ready_fd is not None and not self._handshake():
             return 0  # stopped before the start
         if self._epoch_at_loop_start:
             self._start(time.time())
@@ -520,7 +542,7 @@ class _Loop:
         if not self.fast:
             self._serve_callbacks(wall0)  # real time: the outputs at t go out at wall0 + t
         if self.dynamics is not None:
-            if self.options.resume is None:  # a resumed shard's were its predecessor's
+            if self.options.process.resume is None:  # a resumed shard's were its predecessor's
                 self.dynamics.publish_outputs()
             self._report()
             self._checkpoint()
@@ -583,11 +605,11 @@ class _Loop:
             self._serve_callbacks(wall0)
 
     def _resume(self, deferred: bool) -> None:
-        """Take the boats' state from ``options.resume`` (a dead shard's last snapshot)."""
+        """Take the boats' state from ``options.process.resume`` (a dead shard's last snapshot)."""
         from boat_dynamics.physics.core.snapshot import load
 
-        self.dynamics.restore(load(self.options.resume))
-        self.logger.info(f"resuming at t = {self.clock.t:g} s from {self.options.resume}")
+        self.dynamics.restore(load(self.options.process.resume))
+        self.logger.info(f"resuming at t = {self.clock.t:g} s from {self.options.process.resume}")
         if not deferred:
             self.dynamics.start()  # /tf_static, stamped with the resumed time
 
@@ -596,18 +618,18 @@ class _Loop:
         return max(1, round(CHECKPOINT_PERIOD * self.scenario.simulation.rate_hz))
 
     def _checkpoint(self) -> None:
-        """With ``options.checkpoint``: flush the bag, then save the boats' snapshot.
+        """With ``options.process.checkpoint``: flush the bag, then save the boats' snapshot.
 
         In that order, a bag part that survives its process's death holds every message up
         to the snapshot's time: the resuming process publishes from the next step on.
         """
-        if self.options.checkpoint is None:
+        if self.options.process.checkpoint is None:
             return
         from boat_dynamics.physics.core.snapshot import save
 
         if self.bag is not None:
             self.bag.flush()
-        save(self.options.checkpoint, self.dynamics.snapshot())
+        save(self.options.process.checkpoint, self.dynamics.snapshot())
 
     def _handshake(self) -> bool:
         """--processes start-up: say ready, wait for the parent's epoch, publish with it.
@@ -615,10 +637,10 @@ class _Loop:
         Returns:
             False when stopped before the parent's go.
         """
-        if self.options.await_recorder:
+        if self.options.process.await_recorder:
             self._await_recorder()
-        os.write(self.options.ready_fd, b"ready\n")
-        os.close(self.options.ready_fd)
+        os.write(self.options.process.ready_fd, b"ready\n")
+        os.close(self.options.process.ready_fd)
         while not self.parent.go.is_set():
             if self.stop.is_set():
                 return False
@@ -635,7 +657,8 @@ class _Loop:
         Not when the process started: making the nodes took 0.5 s (the default scenario),
         and every stamp then lagged the wall clock by that much.
         """
-        return not self.fast and self.options.epoch is None and self.options.ready_fd is None
+        process = self.options.process
+        return not self.fast and process.epoch is None and process.ready_fd is None
 
     def _start(self, epoch: float) -> None:
         """Take ``epoch`` (s, the stamp of simulation time 0); publish what waited for it."""
@@ -667,7 +690,7 @@ class _Loop:
         deadline = time.monotonic() + _FIELD_TIMEOUT
         while self.dynamics is not None and self.dynamics.sea is None and not self.stop.is_set():
             if time.monotonic() > deadline:
-                if not self.options.standalone:
+                if not self.options.process.standalone:
                     self.logger.error("no wave field received from the ocean node")
                     return False
                 self.logger.info(f"waiting for {names.WAVE_FIELD} (`boatsim run SCENARIO "
@@ -746,10 +769,10 @@ class _Loop:
         if not self.fast:
             return "real time"
         if self.member is not None:
-            return (f"as fast as the step barrier grants (shard {self.options.shard[0]}/"
-                    f"{self.options.shard[1]}; /clock from the ocean's process)")
+            return (f"as fast as the step barrier grants (shard {self.options.process.shard[0]}/"
+                    f"{self.options.process.shard[1]}; /clock from the ocean's process)")
         if self.conductor is not None:
-            return (f"owning the clock of {self.options.shards} dynamics process(es): "
+            return (f"owning the clock of {self.options.process.shards} dynamics process(es): "
                     "granting steps, publishing /clock")
         return "as fast as possible (/clock published)"
 
