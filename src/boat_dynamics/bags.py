@@ -1,4 +1,4 @@
-"""Deprecated: :mod:`boat_dynamics.tools.bags` (moved in 0.2, issue 9; removed in 0.3).
+"""Deprecated: :mod:`boat_dynamics.tools.bags` (moved in 0.2; removed in 0.3).
 
 The README documented ``boat_dynamics.bags.compare_bags`` for test suites; this keeps that
 import working, with a DeprecationWarning naming the new place.

@@ -590,7 +590,7 @@ class _Loop:
             self.dynamics.step()
         else:
             self.clock.steps += 1
-        if not self.fast:  # not a step early, as until 2026-12
+        if not self.fast:  # after the step is due, not a step early
             self._serve_callbacks(wall0)
         if self.dynamics is not None:
             self.dynamics.publish_outputs()

@@ -58,7 +58,7 @@ RADIATION_MODELS: tuple[RadiationModel, ...] = ("cummins", "resonance")
 #: ``reference_point``, the surface water particle's above the hull reference point (the seed
 #: notes' models' default: their hydrostatic hull has no wave excitation but that velocity;
 #: ``hull`` is the default of a hull under the waves' pressure, ``froude_krylov`` or
-#: ``linear``, since 2026-12-03).
+#: ``linear``).
 WaterVelocity = Literal["hull", "reference_point"]
 WATER_VELOCITIES: tuple[WaterVelocity, ...] = ("hull", "reference_point")
 

@@ -26,7 +26,7 @@ U A11 q, pitch U (A33 - A11) w: slender-body theory's speed terms in the body fr
 work U A33 w q, which its quadratic part returns as the surge force -A33 w q (the radiated
 waves' added resistance); with A_inf in place of A(omega) the two together slowed the default
 box driven into its sea from 3.9 to 1.7 m/s, and the linear part alone pitched it to 39 deg in
-a following sea (2026-12, issue 32). Without them, the body-frame Cummins equation still
+a following sea. Without them, the body-frame Cummins equation still
 carries strip theory's heave-from-pitch speed terms (:mod:`.seakeeping`), and Journee's (1992)
 Wigley I and III towed at Fn 0.2 and 0.3 heave within 20 % of the towing tank
 (tests/boat_dynamics/physics/experiments/test_towing_tank.py); no pitch was measured at speed, so

@@ -11,7 +11,7 @@ file, K - sum K_m, which is smooth and Kramers-Kronig consistent, by vector fitt
 fitting", IEEE Trans. Power Delivery 14(3)) per block of dofs the file couples. The memory
 keeps the modes as potential flow gives them (no added gap damping).
 
-Measured (2026-12-04, 96 states): the shipped Otter's file (V pontoons, 17 modes) within
+Measured (96 states): the shipped Otter's file (V pontoons, 17 modes) within
 4.2 % (B) and 4.4 % (A) of the file outside omega0 +- 3 widths of every mode, 4.4 % at every
 grid point; the box-pontoon Otter's (15 modes) within 4.4 %, where the Hankel fit of
 :func:`.radiation.fit_memory` misses it by 80 %.

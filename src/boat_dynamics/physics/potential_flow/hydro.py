@@ -489,7 +489,7 @@ def narrow_peaks(hydro: HydroCoefficients, ratio: float = 1.5, floor: float = 0.
     oblique seas has one), and by ``floor`` times the curve's 90th percentile: a sharp
     resonance narrower than the
     grid, such as the sloshing between a catamaran's hulls (omega^2 ~ g n pi / b for a gap b;
-    the shipped Otter's at 8.2 and 13.2 rad/s, under 0.2 rad/s wide, measured 2026-12-03 with
+    the shipped Otter's at 8.2 and 13.2 rad/s, under 0.2 rad/s wide, measured with
     a 0.05 rad/s solve). Its height on the grid means nothing, its added mass's slow tails
     contradict the damping (Kramers-Kronig), and no radiation memory fits both
     (:func:`.radiation.fit_memory`). Broad physical humps (the heave hump between two hulls

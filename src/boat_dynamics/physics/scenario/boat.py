@@ -164,7 +164,7 @@ def _water_velocity(dd: Mapping[str, Any], dk: str, buoyancy) -> WaterVelocity:
     damping must act on the velocity through the water over the hull; taken at one surface
     point, the orbital velocity drives the hull a second time: Journee's Wigley III at zero
     speed heaved 0.409 m/m in a head sea of one boat length against 0.29 measured and 0.259
-    with ``hull`` (2026-12-03, tests/boat_dynamics/physics/experiments/test_towing_tank.py).
+    with ``hull`` (tests/boat_dynamics/physics/experiments/test_towing_tank.py).
     """
     excited = isinstance(buoyancy, MeshBuoyancy) and buoyancy.pressure != "hydrostatic"
     default = "hull" if excited else "reference_point"
