@@ -45,7 +45,7 @@ __all__ = ["REPORT_EVERY", "SILENT_AFTER", "WINDOW_STEPS", "StepConductor", "Ste
 #: How many steps a dynamics process may run ahead of the slowest one (the grant's lead).
 #: A wider window absorbs a shard's pauses (a spin for callbacks, a /diagnostics step): 100
 #: mesh boats on 2 shards ran at 7.8-8.2x real time with 16, 8.6 with 32, 9.0 with 64
-#: (docs/performance.md).
+#: (docs/scale.md).
 WINDOW_STEPS = 64
 #: A dynamics process reports every this many steps (and whenever it must wait): half the
 #: window, so a new grant is usually on its way before the last one runs out. A report every
