@@ -98,7 +98,7 @@ def test_importing_the_physics_core_loads_no_ros():
 def test_boat_dynamics_has_only_the_layers_at_its_top():
     top = sorted(p.name for p in (SRC / "boat_dynamics").iterdir()
                  if p.name != "__pycache__")
-    # bags.py: the deprecated alias of tools/bags.py (docs/DESIGN.md, "Changes to the contract");
+    # bags.py: the deprecated alias of tools/bags.py (CHANGES.md, "Changes to the contract");
     # data: package data (coefficient files), no code
     assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "data", "physics", "ros",
                    "tools"]
