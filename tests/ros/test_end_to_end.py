@@ -417,7 +417,7 @@ def test_several_boats_each_in_its_namespace(boatsim, probe):
 
 def test_boats_whose_start_up_lines_differ_in_severity_start(tmp_path):
     # a catamaran whose radiation memory fits poorly (a warning) beside boats with info lines
-    # only: rclpy refuses one call site whose severity changes (issue 32: `boatsim run` died
+    # only: rclpy refuses one call site whose severity changes (`boatsim run` died
     # at start-up with "Logger severity cannot be changed between calls"). The box-pontoon
     # Otter's file without its gap modes (in the scenario's hydro/) fits poorly.
     otter = ROOT / "tests" / "data" / "hydro" / "otter_box_pontoons.stl"

@@ -1,4 +1,4 @@
-"""Messages any node on the domain may publish cannot kill or slow the simulation (issue 27).
+"""Messages any node on the domain may publish cannot kill or slow the simulation.
 
 The dynamics node's subscribers check what they receive within the bounds of the parameters
 that set the same things (ocean_sim.physics.environment, ocean_sim.physics.waves): a message

@@ -16,8 +16,8 @@ from boat_dynamics.tools.bags import compare_bags, read_bag
 #: Three boats (two of the models, one scripted). A surface query takes each point's phase on
 #: its own, so regrouping the fleet changes only how BLAS rounds the sums over the wave
 #: components of a batch's rows: by a row's place in the batch, on some CPUs. float32 (the
-#: default): 1.3e-8 m/s and 4e-9 m in 3 s on an AMD EPYC (AVX2 kernels, 2026-12), 8e-17 where
-#: the machine of 2026-11 ran (another CPU).
+#: default): 1.3e-8 m/s and 4e-9 m in 3 s on an AMD EPYC (AVX2 kernels), 8e-17 on
+#: another CPU.
 REGROUPED = 1e-6
 #: float64 queries: the same rounding at 1e-16 (measured: 8e-17 m).
 REGROUPED_64 = 1e-12

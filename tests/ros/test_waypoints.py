@@ -72,12 +72,12 @@ def test_the_waypoint_example_follows_its_legs_from_gnss_and_imu(boatsim, tmp_pa
               f"{np.hypot(*(track[closest] - goals[-1])):.2f} m, path error max "
               f"{error.max():.2f} m, RMS {rms:.2f} m")
     print(f"waypoints: {result}")
-    # measured 2026-11: 37-39 s, 2.5-2.8 m largest (the overshoot of the first corner), RMS
+    # measured: 37-39 s, 2.5-2.8 m largest (the overshoot of the first corner), RMS
     # 1.2-1.3 m, with the GNSS's 0.6 m noise and 0.3 m correlated error. With both cores
-    # busy (2026-12) the guidance, a process reacting in real time, worked through queues of
+    # busy the guidance, a process reacting in real time, worked through queues of
     # old sensor readings: 83 s, then twice timed out at 90 s. It now takes the latest
     # reading only: 36.9-39.0 s loaded, 2.7-3.0 m largest, RMS 1.2-1.4 m (three runs). The
-    # V-pontoon Otter with its coefficients (2026-12-04): 37.1-37.3 s, 2.09 m, RMS 0.99-1.04 m.
+    # V-pontoon Otter with its coefficients: 37.1-37.3 s, 2.09 m, RMS 0.99-1.04 m.
     assert np.hypot(*(track[closest] - goals[-1])) < 4.0, result
     assert elapsed < 60.0, result
     assert error.max() < 4.0, result

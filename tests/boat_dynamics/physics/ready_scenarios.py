@@ -9,7 +9,7 @@ def ready(data, **kwargs) -> Scenario:
     return init_scenario(parse_scenario(data, **kwargs))
 
 
-#: The seed notes' model, which a boat that set nothing got until 2026-12 (issue 32): the
+#: The seed notes' model, which a boat that set nothing got before the physically based default: the
 #: hydrostatic mesh pressure rho g (eta - z) and no potential-flow coefficients. Tests of the
 #: closed forms of that model (damping, thrust, decay, ...) ask for it by name.
 SEED_MODEL = {"buoyancy": {"pressure": "hydrostatic"}, "hydrodynamics": {"coefficients": "none"}}

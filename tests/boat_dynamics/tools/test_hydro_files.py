@@ -196,7 +196,7 @@ def test_a_dry_run_prints_the_plan_and_its_cost_and_needs_no_capytaine(tmp_path,
     # The default box (4 x 2 x 1 m, draft 0.5 m): 2,120 hull + 800 lid panels of 0.1 m, two
     # symmetries; 40 frequencies and the two limits, 6 radiation + 5 diffraction problems.
     # The estimate: 42 x (1.07e-6 x 2920 x 730 + 2.55e-10 x 4 x 730^3) = 1.9 min (measured
-    # 3.04 s a frequency with the other core busy, 2026-12-03: 2.1 min).
+    # 3.04 s a frequency with the other core busy: 2.1 min).
     monkeypatch.setitem(sys.modules, "capytaine", None)
     assert main(["hydro", "--dry-run", "--force", "-o", str(tmp_path / "h")]) == 0
     out = capsys.readouterr().out
@@ -262,7 +262,7 @@ def test_a_solve_reproduces_the_reference_box():
 
 
 def test_the_otters_gap_resonances_are_found_and_said(capsys, tmp_path):
-    # The box-pontoon Otter's file (shipped until 2026-12-04; two pontoons 0.54 m apart): its
+    # The box-pontoon Otter's file (shipped before the V pontoons; two pontoons 0.54 m apart): its
     # sloshing modes n = 1, 3, 5 (omega^2 = g n pi / b: 7.55, 13.08, 16.89 rad/s; the solver's
     # 8.21, 13.22, 16.97 on its 0.42 rad/s grid, and 8.63 on n = 1's flank), in sway, roll and
     # yaw, are narrow peaks; its broad heave hump at 4.9 rad/s is not; no shipped monohull

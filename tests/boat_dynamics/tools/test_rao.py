@@ -32,7 +32,7 @@ def _rows(out: str) -> list[list[str]]:
 def test_the_default_scenario_runs_and_draws_a_png(tmp_path, capsys):
     # The default scenario's boat has its shipped coefficient file: potential flow is printed
     # beside; in a 3 L and a 10 L head sea its heave (Froude-Krylov pressure on the wetted
-    # hull, nonlinear) follows it within 5 % (measured 2026-12: 3.5 % at 10 L).
+    # hull, nonlinear) follows it within 5 % (measured: 3.5 % at 10 L).
     out_png = tmp_path / "raos.png"
     assert main(["rao", "--wavelengths", "3", "10", "--directions-deg", "180",
                  "-o", str(out_png)]) == 0
@@ -42,8 +42,8 @@ def test_the_default_scenario_runs_and_draws_a_png(tmp_path, capsys):
     for row in rows:
         assert float(row[4]) == pytest.approx(float(row[5]), rel=0.05)
     # beam-sea roll at 1.5 L, near its resonance: potential flow with the boat's own viscous
-    # roll damping (until 2026-12 the curve left it out: 94.9 against 187 deg/m, -49 %);
-    # measured 2026-12-03: 94.4 against 93.2
+    # roll damping (the curve used to leave it out: 94.9 against 187 deg/m, -49 %);
+    # measured: 94.4 against 93.2
     assert main(["rao", "--wavelengths", "1.5", "--directions-deg", "90",
                  "-o", str(tmp_path / "beam.png")]) == 0
     (beam,) = _rows(capsys.readouterr().out)

@@ -18,7 +18,7 @@ the bounding-box centre: the calm water at z = +0.04375 m.
 
 The coefficients: 76 stations x 10 rows (3,798 triangles), panels of 0.045 m (Wigley I: 3,940
 hull + 584 lid panels, 322 s of CPU; III: 3,376 + 612, 224 s), 40 frequencies 1.5-15 rad/s,
-directions 0-180 deg by 45; a 2,292 + 772 panel mesh agrees within 0.7 % (2026-12-03). The
+directions 0-180 deg by 45; a 2,292 + 772 panel mesh agrees within 0.7 %. The
 simulation's hull: 24 x 4 (622 triangles), within 0.3 % of 32 x 6 in the towed RAOs.
 
 Usage (the bem extra: `make bem`):

@@ -200,7 +200,7 @@ def test_a_points_answer_does_not_depend_on_the_other_points_asked_with_it(sea, 
     # what lets a fleet split over shards (or a boat stepped alone) get the same numbers, to
     # the last bits of the final sums: BLAS rounds a row's sums over the components by its
     # place in the batch on some CPUs (OpenBLAS's AVX2 sgemm: 3e-8 m in a float32 height on an
-    # AMD EPYC, 2026-12). Phases taken about the batch's centre differed by up to 1e-4 m in
+    # AMD EPYC). Phases taken about the batch's centre differed by up to 1e-4 m in
     # float32 here.
     rng = np.random.default_rng(seed)
     xy = rng.uniform(-2000, 2000, size=(int(rng.integers(2, 200)), 2))

@@ -88,11 +88,11 @@ def test_no_shooting_out_with_defaults(sea):
     The default model (Froude-Krylov pressure, the hull's coefficients): a half-density box
     rising at about 3 m/s against its heave drag may break out a little, as a real one does;
     the numerical shooting out of the seed notes (and a constant added mass carried out of the
-    water: its bottom 0.38 and 0.92 m above the surface, 2026-12) throws it clear. The
+    water: its bottom 0.38 and 0.92 m above the surface) throws it clear. The
     clearance is the lowest vertex's height above the surface there (zero while any part is
     wet). Bounds: in calm water a tenth of its height; in any sea no higher than its fastest
     rise would carry it, v^2 / 2 g (flying higher, the water would have given it energy it
-    does not have: the shooting out). Measured 2026-12-03: never clear in calm water; in the
+    does not have: the shooting out). Measured: never clear in calm water; in the
     steep sea 0.26 m for an instant (0.074 m with 10 % of critical heave damping, the default
     with coefficients until then).
     """

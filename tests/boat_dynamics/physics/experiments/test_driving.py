@@ -29,7 +29,7 @@ reference. The bounds are what a naval architect accepts of a small craft in a s
   is below a tenth of that over the first 10 s (energy does not grow), and it does not settle
   into a turn (the course is stable).
 
-Before this suite (2026-12, issue 32) the shipped default failed it: the box rolled to 67 deg,
+Before this suite the shipped default failed it: the box rolled to 67 deg,
 heaved 1.46 m in a 0.53 m sea and turned through 447 deg with the rudder amidships.
 """
 

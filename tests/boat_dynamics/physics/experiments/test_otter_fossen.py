@@ -4,7 +4,7 @@ Fossen's figures: github.com/cybergalactic/PythonVehicleSimulator, commit
 c717e073d7a839dcb5956cf20c595132f1fa249a, ``src/python_vehicle_simulator/vehicles/otter.py``
 run with his own integration (``lib/mainLoop.simulate``, forward Euler, 0.02 s) in calm water
 from rest, the two propellers at equal thrust fractions (thrust = k n |n|, so a fraction f is
-n = sqrt(f) n_max; 119.68 N each at n_max), the mean of the last 20 of 120 s (2026-12-03).
+n = sqrt(f) n_max; 119.68 N each at n_max), the mean of the last 20 of 120 s.
 boatsim's cmd_thrust is the same fraction of its 120 N per thruster.
 
 How close and why they differ (docs/DESIGN.md, "Physics"): the straight-line speeds are
@@ -52,7 +52,7 @@ def trials():
 
 
 def test_the_otters_straight_line_speeds_are_fossens_less_his_payload_push(trials):
-    # measured 2026-12-04 (V pontoons, coefficients): 0.774, 1.544, 2.306, 3.054 m/s:
+    # measured (V pontoons, coefficients): 0.774, 1.544, 2.306, 3.054 m/s:
     # -9.9, -5.8, -4.9, -5.2 %
     track, late = trials
     for i, (fraction, his) in enumerate(FOSSEN_SPEED.items()):
@@ -61,7 +61,7 @@ def test_the_otters_straight_line_speeds_are_fossens_less_his_payload_push(trial
 
 
 def test_the_otter_turns_slower_than_fossens_whose_munk_moment_is_unbalanced(trials):
-    # measured 2026-12-04: 8.80 deg/s at 2.27 m/s against his 16.57 at 2.29 (0.53 of his);
+    # measured: 8.80 deg/s at 2.27 m/s against his 16.57 at 2.29 (0.53 of his);
     # his own model without the Munk moment turns at 8.5 deg/s
     track, late = trials
     rate = -math.degrees(float(track.angular_velocity[4, late, 2].mean()))  # z up: to starboard

@@ -180,7 +180,7 @@ def test_towed_in_head_seas_heave_and_pitch_follow_potential_flow_at_speed():
     # The box towed at 1 m/s (Froude number 0.16) in an 8 m head sea, met at 3.56 rad/s, near
     # its heave resonance: potential flow with the zero-speed coefficients at the encounter
     # frequency, surge held, and the radiation's U L terms (seakeeping module docstring).
-    # Measured 2026-12-03: heave 0.810 against 0.778 (without the U L terms 0.616), pitch
+    # Measured: heave 0.810 against 0.778 (without the U L terms 0.616), pitch
     # 27.8 against 27.7 deg/m (with surge free 26.1).
     from boat_dynamics.tools.rao import theory_curve
 

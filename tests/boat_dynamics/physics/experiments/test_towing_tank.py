@@ -19,7 +19,7 @@ as ``boatsim rao --speed``). Asserted: within 20 % of the measurement (the issue
 potential flow itself agrees: its zero-speed heave within 8 %, its pitch 7-12 % low, its heave
 at speed with Salvesen-Tuck-Faltinsen's terms within 9 %).
 
-Measured 2026-12-03 (docs/DESIGN.md has the table with the values before this issue's changes):
+Measured (docs/DESIGN.md has the table with the values before these models):
 Wigley III at Fn 0 heave -3, +7, +4 %, pitch -10, -9, -13 %; at Fn 0.2 heave +18, +5, -1 %;
 at Fn 0.3 +19, +15, +15, +2 %; Wigley I at Fn 0.3, lambda / L 1.25 (its heave resonance) -3 %.
 The diffraction is looked up at the encounter frequency (:mod:`.diffraction`); at the wave's own

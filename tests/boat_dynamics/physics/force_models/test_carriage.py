@@ -56,7 +56,7 @@ def test_the_towing_force_in_calm_water_is_the_hulls_resistance(speed):
 def test_towed_into_head_seas_the_boat_heaves_and_pitches_and_meets_added_resistance():
     # the shipped default model, 1.5 m/s into a 0.1 m, 8 m wave: heave and pitch free (they
     # move with the encounter frequency), sway and yaw held, a mean towing force above calm
-    # water's (measured 2026-12-03: 709 against 581 N; heave 0.12 m and pitch 3.6 deg peak to
+    # water's (measured: 709 against 581 N; heave 0.12 m and pitch 3.6 deg peak to
     # peak)
     boat = {"carriage": {"speed": 1.5}}
     wave = WaveField((WaveComponent(0.1, 8.0, math.radians(210.0), 0.3, 0.0),))

@@ -57,9 +57,9 @@ def _errors_where(response: np.ndarray, hydro, keep: np.ndarray) -> tuple[float,
 
 def test_the_box_otters_memory_fits_its_file_within_5_percent_away_from_the_gap_modes(otter,
                                                                                        memory):
-    """The box-pontoon Otter's file (shipped until 2026-12-04, 0.078 m draft): outside
+    """The box-pontoon Otter's file (shipped before the V pontoons, 0.078 m draft): outside
     omega0 +- 3 half-height widths of each of its 15 modes (11 of the 40 grid points), each
-    entry's error over its largest value in the file. Measured 2026-12-04 (96 states): 4.4 %
+    entry's error over its largest value in the file. Measured (96 states): 4.4 %
     (B) and 3.8 % (A) there, 4.4 % at every point; the Hankel fit of the same file without its
     modes misses it by 80 %."""
     assert len(otter.gap_modes) == 15
@@ -78,7 +78,7 @@ def test_the_shipped_otters_memory_fits_its_file_within_5_percent_away_from_the_
     """Issue 32: the catamaran's radiation fit within 5 % of its file away from the gap
     resonance. The shipped Otter (V pontoons, 0.177 m draft, 17 modes), outside omega0 +- 3
     half-height widths of each mode, each entry's error over its largest value in the file.
-    Measured 2026-12-04: B 4.2 %, A 4.4 % there (the surge-pitch interference between the
+    Measured: B 4.2 %, A 4.4 % there (the surge-pitch interference between the
     pontoons needs the 96 states: 64 give 5.8 % and 5.5 %)."""
     hydro = load_coefficients(SHIPPED_OTTER)
     memory = memory_of(hydro)
@@ -95,7 +95,7 @@ def test_the_shipped_otters_memory_fits_its_file_within_5_percent_away_from_the_
 def test_a_pair_that_relocates_onto_the_real_axis_stays_two_real_poles(count):
     """Vector fitting's relocation turned the shipped Otter's heave pair into two real poles
     with imaginary parts of +-1e-9 relative; each was then mirrored as if complex, and the
-    heave fits with 6 to 16 poles missed the file by 1.8 to 1.4e7 (measured 2026-12-04).
+    heave fits with 6 to 16 poles missed the file by 1.8 to 1.4e7 (measured).
     Made real, they fit within 2.5 %."""
     hydro = load_coefficients(SHIPPED_OTTER)
     modes = mode_memory(hydro.gap_modes)

@@ -128,7 +128,7 @@ def test_a_slender_hull_without_a_rudder_stops_turning_only_with_the_lift():
 
     Its A22 (63.5 kg) is 0.81 of m + A11 (78.3 kg): slender-body theory puts it just short of
     course stability (a prismatic hull is stable when A22 > m + A11), so with the lift its
-    yaw rate decays slowly; the Munk moment alone spins it. Measured 2026-12-03 over 60 s:
+    yaw rate decays slowly; the Munk moment alone spins it. Measured over 60 s:
     with the lift 5.73 -> 1.02 deg/s at 5 s and 0.60 at 60 s, 49 deg turned; without it
     13.6 deg/s, 733 deg turned.
     """
