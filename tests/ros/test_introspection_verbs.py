@@ -102,7 +102,7 @@ def test_node_list_and_params(sim, cli):
                              ("publish_rate_hz", "20.0", "read-only")):
         refused = cli("param", "set", "/boat_dynamics", name, value, "--timeout", "20")
         assert refused.returncode == 1, refused  # ros2 param set exits 0: a script can't tell
-        assert refused.stderr.startswith("boatsim param: error: Setting parameter failed: ")
+        assert refused.stderr.startswith("boatsim param set: error: Setting parameter failed: ")
         assert why in refused.stderr, refused.stderr
     dump = yaml.safe_load(param("dump", "/boat_dynamics"))
     params = dump["/boat_dynamics"]["ros__parameters"]
