@@ -18,7 +18,7 @@ from rosbags.typesys import Stores, get_typestore
 from std_msgs.msg import Float64
 from support import cli_run
 
-from boat_dynamics.tools.bags import compare_bags, read_bag_topics
+from boat_dynamics.tools.bags import compare_bags, read_bag, read_bag_topics
 
 SCRIPTED = """
 ocean: {components: [{amplitude: 0.3, wavelength: 25.0, steepness: 0.5}]}
@@ -139,6 +139,26 @@ def test_standalone_record_picks_up_topics_including_latched_ones(boatsim, tmp_p
     assert float(np.diff(t).max()) == pytest.approx(0.02, abs=1e-6)
     assert t[-1] - t[0] == pytest.approx(0.02 * (len(t) - 1), abs=1e-6)
     assert t[-1] - (zero.sec + zero.nanosec * 1e-9) == pytest.approx(6.0, abs=1e-6)
+
+
+def test_a_stopped_recorder_keeps_every_message_it_had_received(boatsim, probe, tmp_path):
+    from rclpy.duration import Duration
+    from rclpy.qos import QoSProfile, ReliabilityPolicy
+
+    bag = tmp_path / "burst"
+    rec = boatsim("record", "/burst", "-o", str(bag), name="record")
+    pub = probe.node.create_publisher(
+        Float64, "/burst", QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE))
+    probe.spin_until(lambda: pub.get_subscription_count() > 0, 30.0, "the recorder")
+    for i in range(1000):  # the recorder's depth: a full queue is acknowledged at once
+        pub.publish(Float64(data=float(i)))
+    # acknowledged: each is in the recorder's DDS queue; a stop right now must not lose one
+    # (before, the recorder ended its loop with the burst still queued: it kept 98-315)
+    assert pub.wait_for_all_acked(Duration(seconds=30))
+    assert rec.stop(signal.SIGINT) == 0
+    assert "wrote 1000 messages" in rec.output(), rec.output()
+    values = [m.data for _, m in read_bag(bag, ["/burst"])["/burst"]]
+    assert values == [float(i) for i in range(1000)]
 
 
 def test_teleop_through_a_pty_sends_commands_and_restores_the_terminal(probe):

@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 from typing import TextIO
 
 import rclpy
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor, TimeoutException
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 
 from boat_dynamics.physics.body.rigid_body import quat_to_euler
@@ -38,7 +38,7 @@ from boat_dynamics.ros.node import (
     advertises_wrenches,
 )
 from boat_dynamics.ros.participants import PROFILE, Participants, use_profile
-from boat_dynamics.tools.recording import BagWriter, TopicRecorder, declares_only
+from boat_dynamics.tools.recording import BagWriter, TopicRecorder, declares_only, spin_pending
 from boat_msgs_py import names
 from boat_msgs_py.process import (
     SharedTime,
@@ -64,6 +64,9 @@ _DESTROY_LIMIT = 2000
 _QUADRATIC_START = 100
 #: How long a --processes child waits for the recorder to subscribe to it, s (wall).
 _RECORDER_TIMEOUT = 60.0
+#: How long a --processes child at its end waits for the recorder to acknowledge its last
+#: messages, s (wall).
+_ACK_TIMEOUT = 5.0
 #: How long to wait for the dynamics node to receive the first wave field, s (wall).
 _FIELD_TIMEOUT = 10.0
 #: Wall-clock period of the live status line, s.
@@ -151,18 +154,6 @@ class RunOptions:
     lockstep: bool = False
     exclude_topics: tuple[str, ...] = ()
     process: ProcessRole = ProcessRole()
-
-
-def _spin_pending(executor: SingleThreadedExecutor, limit: int = 64) -> None:
-    """Run the callbacks that are ready now, without waiting (at most ``limit``)."""
-    for _ in range(limit):
-        try:
-            handler, _, _ = executor.wait_for_ready_callbacks(timeout_sec=0.0)
-        except TimeoutException:
-            return
-        handler()
-        if handler.exception() is not None:
-            raise handler.exception()
 
 
 class Lag:
@@ -682,6 +673,24 @@ class _Loop:
                 return
             self.executor.spin_once(timeout_sec=0.1)
 
+    def _await_acks(self) -> None:
+        """--processes with a recorder: it has received every message before this process ends.
+
+        The parent stops the recorder once its children have ended; a message still in
+        flight then (the last step's, on a loaded machine) would be lost.
+        """
+        from rclpy.duration import Duration
+
+        deadline = time.monotonic() + _ACK_TIMEOUT
+        for node in self.nodes:
+            for publisher in node.publishers:
+                left = deadline - time.monotonic()
+                if left <= 0.0 or not publisher.wait_for_all_acked(Duration(seconds=left)):
+                    self.logger.warning(f"{publisher.topic_name}: the recorder did not "
+                                        f"acknowledge every message within "
+                                        f"{_ACK_TIMEOUT:g} s; the bag may lack the last")
+                    return
+
     def _wait_for_sea(self) -> bool:
         """Serve callbacks until the dynamics node has the wave field; False on a time-out.
 
@@ -712,7 +721,7 @@ class _Loop:
                 return 0
             next_log = conductor.log_missing(next_log)
             conductor.repeat_clock()
-            _spin_pending(self.executor)
+            spin_pending(self.executor)
         clock.steps = done  # a restarted owner joins where the shards are
         if self.recorder is not None:
             self.recorder.discover()  # now every shard's topics are known: what is left
@@ -809,12 +818,12 @@ class _Loop:
         parameter calls waited until it caught up, which it might never do.)
         """
         if self.fast and self.options.lockstep:
-            _spin_pending(self.executor)
+            spin_pending(self.executor)
             return
         step_due = wall0 + self.clock.t
         if self.fast or step_due <= time.time():
             if (now := time.monotonic()) >= self._next_spin:
-                _spin_pending(self.executor)
+                spin_pending(self.executor)
                 spent = time.monotonic() - now
                 self._next_spin = now + spent + max(_FAST_SPIN_PERIOD,
                                                     spent / _FAST_SPIN_SHARE)
@@ -825,6 +834,8 @@ class _Loop:
     def close(self, status: TextIO) -> None:
         """Finalize the bag, destroy the nodes, stop the executor."""
         self.display.close()
+        if self.options.process.await_recorder:
+            self._await_acks()
         if self.bag is not None:
             self.bag.close()
             total = sum(self.bag.counts.values())
