@@ -33,7 +33,7 @@ from boat_dynamics.physics.body.rigid_body import rotation_matrix
 from boat_dynamics.physics.body.wrench import cross
 from boat_dynamics.physics.core import pipeline
 from boat_dynamics.physics.core.boat import BoatState, reference_pose
-from boat_dynamics.physics.core.commands import check_command
+from boat_dynamics.physics.core.commands import CommandCheck, Commanded, CommandIntake
 from boat_dynamics.physics.core.contact import Contact, contact, reference_points
 from boat_dynamics.physics.core.diagnostics import active_remedies, fleet_reports
 from boat_dynamics.physics.core.model import BoatParams
@@ -48,7 +48,6 @@ from boat_dynamics.physics.core.system import (
 )
 from boat_dynamics.physics.force_models.carriage import body_wrench
 from boat_dynamics.physics.force_models.control import CONTROL_MODES
-from boat_dynamics.physics.force_models.propulsion import MAX_THRUSTERS
 from boat_dynamics.physics.potential_flow.radiation import POOR_FIT
 from boat_dynamics.physics.scenario import BoatSpec, Scenario
 from boat_dynamics.physics.scenario.specs import (
@@ -124,25 +123,10 @@ class SimClock:
 @dataclass
 class _Boat:
     spec: BoatSpec
-    index: int  # in the fleet
-    throttle: float = 0.0
-    rudder: float = 0.0
-    last_thrust_t: float = -math.inf
-    timed_out: bool = True
-    # named thrusters (``propulsion`` as a list): per thruster, the last valid throttle and
-    # steering angle, the time of its last throttle command (its own topic or cmd_thrust)
-    thrusts: list[float] = field(default_factory=list)
-    angles: list[float] = field(default_factory=list)
-    thrust_t: list[float] = field(default_factory=list)
-    thrust_out: list[bool] = field(default_factory=list)
+    index: int  # in the fleet (and in the command intake)
     pubs: dict[str, TappedPublisher] = field(default_factory=dict)
     templates: dict = field(default_factory=dict)  # CdrTemplate per published topic
     subs: list = field(default_factory=list)
-    # command intake, on /diagnostics: messages received on the boat's command topics, and
-    # of those the ones ignored (not finite) and clamped (out of range)
-    received: int = 0
-    ignored: int = 0
-    clamped: int = 0
 
 
 def _rate_descriptor(description: str, high: float) -> ParameterDescriptor:
@@ -325,6 +309,8 @@ class DynamicsNode(Node):
         """Every boat's publishers and subscriptions; the fleet's templates, /tf, sensors."""
         sim, tap = scenario.simulation, self._tap
         self.boats = []
+        self.intake = CommandIntake([Commanded(spec.params, spec.commands, len(spec.thrusters))
+                                     for spec in scenario.boats])
         for i, spec in enumerate(scenario.boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
                 raise StartInterrupted(f"stopped while making boat {i} of "
@@ -378,18 +364,12 @@ class DynamicsNode(Node):
                 self, WrenchStamped, names.wrench_topic(spec.name, names.CARRIAGE_WRENCH),
                 DIAGNOSTICS_QOS, self._tap, self._graph)
         if spec.commands is None:
-            max_rudder = spec.params.rudder.max_angle
             thrust_topic = names.boat_topic(spec.name, names.CMD_THRUST)
             rudder_topic = names.boat_topic(spec.name, names.CMD_RUDDER)
-            boat.subs.append(self.create_subscription(
-                Float64, thrust_topic,
-                lambda msg, b=boat, tp=thrust_topic: self._on_thrust(b, tp, msg),
-                COMMAND_QOS))
-            boat.subs.append(self.create_subscription(
-                Float64, rudder_topic,
-                lambda msg, b=boat, tp=rudder_topic, m=max_rudder: self._on_rudder(
-                    b, tp, msg, m),
-                COMMAND_QOS))
+            intake, now = self.intake, lambda: self._sim_clock.t
+            self._subscribe_command(boat, thrust_topic,
+                                    lambda v, i=index: intake.thrust(i, v, now()))
+            self._subscribe_command(boat, rudder_topic, lambda v, i=index: intake.rudder(i, v))
             if self._tap is not None:  # recorded here, at the simulation time they arrive
                 self._tap.topics.update({thrust_topic, rudder_topic})
             self._command_topics.update({thrust_topic, rudder_topic})
@@ -429,25 +409,30 @@ class DynamicsNode(Node):
 
     def _subscribe_thrusters(self, boat: _Boat) -> None:
         """Per named thruster: ``thrusters/<name>/thrust`` and, if steerable, ``.../angle``."""
-        n = len(boat.spec.thrusters)  # 0: a single unnamed thruster, no topics of its own
-        models = boat.spec.params.thrusters[:n]
-        boat.thrusts, boat.angles = [0.0] * n, [0.0] * n
-        boat.thrust_t, boat.thrust_out = [-math.inf] * n, [True] * n
+        models = boat.spec.params.thrusters[:len(boat.spec.thrusters)]
+        intake, now, i = self.intake, lambda: self._sim_clock.t, boat.index
         for j, (name, model) in enumerate(zip(boat.spec.thrusters, models, strict=True)):
             topic = names.thruster_topic(boat.spec.name, name, names.THRUSTER_THRUST)
-            boat.subs.append(self.create_subscription(
-                Float64, topic, lambda msg, b=boat, j=j, tp=topic: self._on_thruster_thrust(
-                    b, j, tp, msg), COMMAND_QOS))
+            self._subscribe_command(boat, topic,
+                                    lambda v, j=j: intake.thruster_thrust(i, j, v, now()))
             topics = {topic}
             if model.steerable:
                 angle_topic = names.thruster_topic(boat.spec.name, name, names.THRUSTER_ANGLE)
-                boat.subs.append(self.create_subscription(
-                    Float64, angle_topic, lambda msg, b=boat, j=j, tp=angle_topic:
-                    self._on_thruster_angle(b, j, tp, msg), COMMAND_QOS))
+                self._subscribe_command(boat, angle_topic,
+                                        lambda v, j=j: intake.thruster_angle(i, j, v))
                 topics.add(angle_topic)
             if self._tap is not None:
                 self._tap.topics.update(topics)
             self._command_topics.update(topics)
+
+    def _subscribe_command(self, boat: _Boat, topic: str,
+                           take: Callable[[float], CommandCheck]) -> None:
+        """A command topic of ``boat``: each message recorded, then handed to ``take``."""
+        def on_message(msg: Float64) -> None:
+            self._record_command(topic, msg)
+            self._warn_about(topic, take(msg.data))
+
+        boat.subs.append(self.create_subscription(Float64, topic, on_message, COMMAND_QOS))
 
     def start(self) -> None:
         """Publish what is published once, stamped with the clock (its epoch is now known)."""
@@ -470,14 +455,8 @@ class DynamicsNode(Node):
                "boats": np.array([b.spec.name for b in boats], dtype=str),
                "modes": np.array([b.spec.params.control.mode for b in boats], dtype=str),
                "commands_received": np.asarray(self.commands_received),
-               **flatten(self._state, "state."), **self._sensors.snapshot()}
-        for name in _BOAT_SCALARS:
-            out[f"boats.{name}"] = np.array([getattr(b, name) for b in boats])
-        for name in _BOAT_PER_THRUSTER:  # padded to MAX_THRUSTERS columns
-            out[f"boats.{name}"] = np.array([[*getattr(b, name),
-                                              *[0] * (MAX_THRUSTERS - len(getattr(b, name)))]
-                                             for b in boats], dtype=float).reshape(-1,
-                                                                                   MAX_THRUSTERS)
+               **flatten(self._state, "state."), **self._sensors.snapshot(),
+               **self.intake.snapshot()}
         return out
 
     def restore(self, arrays: dict[str, np.ndarray]) -> None:
@@ -503,13 +482,7 @@ class DynamicsNode(Node):
         self._before = None  # the next step sets it (a resumed node publishes after it)
         self._contact, self._forces, self._towing = None, None, None
         self.commands_received = int(arrays["commands_received"])
-        for i, b in enumerate(self.boats):
-            for name in _BOAT_SCALARS:
-                setattr(b, name, type(getattr(b, name))(arrays[f"boats.{name}"][i]))
-            for name in _BOAT_PER_THRUSTER:
-                kind = bool if name == "thrust_out" else float
-                n = len(getattr(b, name))
-                setattr(b, name, [kind(v) for v in arrays[f"boats.{name}"][i, :n]])
+        self.intake.restore(arrays)
         self._sensors.restore(arrays)
 
     def boat_positions(self) -> np.ndarray:
@@ -643,33 +616,24 @@ class DynamicsNode(Node):
         if self._tap is not None:
             self._tap.sink(topic, "std_msgs/msg/Float64", serialize_message(msg))
 
-    def _checked(self, boat: _Boat, topic: str, msg: Float64, limit: float, unit: str = ""
-                 ) -> float | None:
-        """Record, count and check a command against [-limit, limit]: the value to use or None.
+    def _warn_about(self, topic: str, checked: CommandCheck) -> None:
+        """Warn about a command clamped or ignored by the intake (:class:`CommandIntake`).
 
-        A value out of range is clamped and a non-finite one ignored, with a warning at most
-        every 2 s (wall) per topic and kind that says how many it did not show; every one is
-        counted on /diagnostics.
+        At most every 2 s (wall) per topic and kind, saying how many it did not show; every
+        one is counted on /diagnostics.
         """
-        self._record_command(topic, msg)
-        boat.received += 1
-        checked = check_command(msg.data, -limit, limit, unit)
-        if checked.problem:
-            kind = "ignored" if checked.value is None else "clamped"
-            if checked.value is None:
-                boat.ignored += 1
-            else:
-                boat.clamped += 1
-            now = time.monotonic()
-            last, unshown = self._warned.get((topic, kind), (-math.inf, 0))
-            if now - last >= 2.0:
-                more = (f" ({unshown} more {kind} since the last warning; counts on "
-                        f"{names.DIAGNOSTICS})" if unshown else "")
-                self.get_logger().warning(f"{topic}: {checked.problem}{more}")
-                self._warned[(topic, kind)] = (now, 0)
-            else:
-                self._warned[(topic, kind)] = (last, unshown + 1)
-        return checked.value
+        if not checked.problem:
+            return
+        kind = "ignored" if checked.value is None else "clamped"
+        now = time.monotonic()
+        last, unshown = self._warned.get((topic, kind), (-math.inf, 0))
+        if now - last >= 2.0:
+            more = (f" ({unshown} more {kind} since the last warning; counts on "
+                    f"{names.DIAGNOSTICS})" if unshown else "")
+            self.get_logger().warning(f"{topic}: {checked.problem}{more}")
+            self._warned[(topic, kind)] = (now, 0)
+        else:
+            self._warned[(topic, kind)] = (last, unshown + 1)
 
     def check_command_types(self) -> None:
         """Report once per topic and type a publisher of another type on a command topic.
@@ -687,81 +651,21 @@ class DynamicsNode(Node):
                         f"{topic}: a publisher of {kind} is ignored: command topics take "
                         f"{_COMMAND_TYPE} (the value in its data field)")
 
-    def _on_thrust(self, boat: _Boat, topic: str, msg: Float64) -> None:
-        value = self._checked(boat, topic, msg, 1.0)
-        if value is None:
-            return
-        boat.throttle = value
-        boat.last_thrust_t = self._sim_clock.t
-        boat.timed_out = False
-        for j in range(len(boat.thrusts)):  # named thrusters: cmd_thrust drives them all
-            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = value, self._sim_clock.t, False
-
-    def _on_thruster_thrust(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
-        value = self._checked(boat, topic, msg, 1.0)
-        if value is not None:
-            boat.thrusts[j], boat.thrust_t[j], boat.thrust_out[j] = value, self._sim_clock.t, False
-
-    def _on_thruster_angle(self, boat: _Boat, j: int, topic: str, msg: Float64) -> None:
-        value = self._checked(boat, topic, msg, float(boat.spec.params.thrusters[j].max_angle),
-                              "rad")
-        if value is not None:
-            boat.angles[j] = value
-
-    def _on_rudder(self, boat: _Boat, topic: str, msg: Float64, max_angle: float) -> None:
-        value = self._checked(boat, topic, msg, max_angle, "rad")
-        if value is None:
-            return
-        boat.rudder = value
-        for j, model in enumerate(boat.spec.params.thrusters[:len(boat.angles)]):
-            if model.steerable:  # cmd_rudder steers the steerable named thrusters too
-                limit = float(model.max_angle)
-                boat.angles[j] = min(max(value, -limit), limit)
-
     # ------------------------------------------------------------------ stepping
 
-    def _inputs(self, boat: _Boat) -> tuple[float, float]:
-        """(throttle, rudder rad) for the next step: scripted, or the last valid commands."""
-        t = self._sim_clock.t
-        if boat.spec.commands is not None:
-            return boat.spec.commands.at(t)
-        timeout = self._cmd_timeout
-        if not boat.timed_out and t - boat.last_thrust_t > timeout:
-            boat.timed_out = True
-            if boat.throttle != 0.0:
-                self.get_logger().warning(
-                    f"{names.boat_topic(boat.spec.name, names.CMD_THRUST)}: no command for "
-                    f"{timeout:g} s; thrust set to 0")
-            boat.throttle = 0.0
-        return boat.throttle, boat.rudder
-
-    def _thruster_inputs(self, boat: _Boat) -> tuple[list[float], list[float]]:
-        """Named thrusters: (throttles, angles rad) for the next step, after their timeouts."""
-        t, timeout = self._sim_clock.t, self._cmd_timeout
-        for j, name in enumerate(boat.spec.thrusters):
-            if not boat.thrust_out[j] and t - boat.thrust_t[j] > timeout:
-                boat.thrust_out[j] = True
-                if boat.thrusts[j] != 0.0:
-                    topic = names.thruster_topic(boat.spec.name, name, names.THRUSTER_THRUST)
-                    self.get_logger().warning(
-                        f"{topic} (or {names.boat_topic(boat.spec.name, names.CMD_THRUST)}): "
-                        f"no command for {timeout:g} s; thrust set to 0")
-                boat.thrusts[j] = 0.0
-        return boat.thrusts, boat.angles
-
     def _fleet_inputs(self) -> FleetInputs:
-        """Every boat's inputs for the next step (per thruster when a boat names them)."""
-        commands = np.array([self._inputs(b) for b in self.boats], dtype=float).reshape(-1, 2)
-        named = [b for b in self.boats if b.thrusts and b.spec.commands is None]
-        if not named:
-            return FleetInputs(commands[:, 0], commands[:, 1])
-        throttle = np.repeat(commands[:, :1], MAX_THRUSTERS, axis=1)
-        angle = np.repeat(commands[:, 1:2], MAX_THRUSTERS, axis=1)
-        for b in named:
-            thrusts, angles = self._thruster_inputs(b)
-            throttle[b.index, :len(thrusts)] = thrusts
-            angle[b.index, :len(angles)] = angles
-        return FleetInputs(throttle, commands[:, 1], angle)
+        """Every boat's inputs for the next step; a throttle that timed out is warned about."""
+        inputs, fell = self.intake.inputs(self._sim_clock.t, self._cmd_timeout)
+        for f in fell:
+            spec = self.boats[f.boat].spec
+            topic = names.boat_topic(spec.name, names.CMD_THRUST)
+            if f.thruster is not None:
+                own = names.thruster_topic(spec.name, spec.thrusters[f.thruster],
+                                           names.THRUSTER_THRUST)
+                topic = f"{own} (or {topic})"
+            self.get_logger().warning(f"{topic}: no command for {self._cmd_timeout:g} s; "
+                                      "thrust set to 0")
+        return inputs
 
     @staticmethod
     def _due(k: int, rate: float, out_rate: float) -> bool:
@@ -911,21 +815,15 @@ class DynamicsNode(Node):
             (f"boatsim: {boat.spec.name or 'boat'}",
              *((2, f"stopped: its state diverged at t = {self.stopped[boat.index]:.3f} s")
                if boat.index in self.stopped else (r.level, r.message)),
-             (*r.values, ("commands_received", str(boat.received)),
+             (*r.values, ("commands_received", str(intake.received)),
               ("messages_refused", str(sum(self.refused.values()))),
-              ("commands_ignored_not_finite", str(boat.ignored)),
-              ("commands_clamped", str(boat.clamped))))
-            for boat, r in zip(self.boats, reports, strict=True)]))
+              ("commands_ignored_not_finite", str(intake.ignored)),
+              ("commands_clamped", str(intake.clamped))))
+            for boat, intake, r in zip(self.boats, self.intake.boats, reports, strict=True)]))
 
 
 #: The layout of :meth:`DynamicsNode.snapshot` (a resuming process refuses another).
 SNAPSHOT_FORMAT = 1
-#: A boat's command intake kept in a snapshot: numbers ...
-_BOAT_SCALARS = ("throttle", "rudder", "last_thrust_t", "timed_out", "received", "ignored",
-                 "clamped")
-#: ... and per named thruster.
-_BOAT_PER_THRUSTER = ("thrusts", "angles", "thrust_t", "thrust_out")
-
 #: The type of every command topic.
 _COMMAND_TYPE = "std_msgs/msg/Float64"
 
