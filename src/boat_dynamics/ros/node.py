@@ -16,11 +16,7 @@ from typing import Literal
 
 import numpy as np
 from boat_msgs.msg import Environment as EnvironmentMsg
-from boat_msgs.msg import FleetState as FleetStateMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
-from diagnostic_msgs.msg import DiagnosticArray
-from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
-from nav_msgs.msg import Odometry
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 from rclpy.context import Context
 from rclpy.node import Node
@@ -55,18 +51,11 @@ from boat_dynamics.physics.scenario.specs import (
     SimulationSettings,
     WrenchTopics,
 )
-from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
+from boat_dynamics.ros.outputs import FleetPublisher, StartInterrupted
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
-    FleetStateTemplate,
-    FleetTemplate,
     clock_template,
-    diagnostic_array_cdr,
-    odometry_template,
-    pose_template,
     stamp_parts,
-    twist_template,
-    wrench_template,
 )
 from boat_msgs_py.convert import (
     environment_from_msg,
@@ -77,9 +66,7 @@ from boat_msgs_py.convert import (
 from boat_msgs_py.qos import (
     CLOCK_QOS,
     COMMAND_QOS,
-    DIAGNOSTICS_QOS,
     ENVIRONMENT_QOS,
-    STATE_QOS,
     WAVE_FIELD_QOS,
 )
 from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
@@ -88,12 +75,9 @@ from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
 
 __all__ = ["DynamicsNode", "LockstepRole", "SimClock", "StartInterrupted", "advertises_wrenches"]
 
+
 #: How a dynamics node takes part in a lockstep replay (see :class:`DynamicsNode`).
 LockstepRole = Literal["follow", "announce", "none"]
-
-
-class StartInterrupted(RuntimeError):
-    """The node was stopped (Ctrl-C) while it was being made."""
 
 
 @dataclass
@@ -123,9 +107,7 @@ class SimClock:
 @dataclass
 class _Boat:
     spec: BoatSpec
-    index: int  # in the fleet (and in the command intake)
-    pubs: dict[str, TappedPublisher] = field(default_factory=dict)
-    templates: dict = field(default_factory=dict)  # CdrTemplate per published topic
+    index: int  # in the fleet (and in the command intake, and the fleet publisher)
     subs: list = field(default_factory=list)
 
 
@@ -223,8 +205,6 @@ class DynamicsNode(Node):
         self._tap = tap
         self._clock_pub = (TappedPublisher(self, Clock, names.CLOCK, CLOCK_QOS, tap)
                            if publish_clock else None)
-        self._diag_pub = TappedPublisher(self, DiagnosticArray, names.DIAGNOSTICS,
-                                         DIAGNOSTICS_QOS, tap)
         self._field_sub = self.create_subscription(
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
         # the scenario's current and wind from the first step; the ocean's changes as they come
@@ -306,28 +286,18 @@ class DynamicsNode(Node):
             self._ready_pub = self.create_publisher(String, names.LOCKSTEP_READY, COMMAND_QOS)
 
     def _make_fleet(self, scenario: Scenario, stopped: Callable[[], bool] | None) -> None:
-        """Every boat's publishers and subscriptions; the fleet's templates, /tf, sensors."""
-        sim, tap = scenario.simulation, self._tap
-        self.boats = []
+        """Every boat's publishers (one fleet publisher) and command subscriptions."""
         self.intake = CommandIntake([Commanded(spec.params, spec.commands, len(spec.thrusters))
                                      for spec in scenario.boats])
-        for i, spec in enumerate(scenario.boats):  # 36 ms a boat with 1000 (DDS endpoints)
+        self.outputs = FleetPublisher(self, scenario.boats, scenario.simulation, self._tap,
+                                      self._graph, stopped)
+        self.boats = []
+        for i, spec in enumerate(scenario.boats):
             if stopped is not None and stopped():
-                raise StartInterrupted(f"stopped while making boat {i} of "
-                                       f"{len(scenario.boats)}")
+                raise StartInterrupted(f"stopped while subscribing boat {i} of "
+                                       f"{len(scenario.boats)} to its commands")
             self.boats.append(self._make_boat(spec, i))
         self._log_boats(scenario.boats)
-        # every boat's message of a kind packed in one pass (cdr.FleetTemplate)
-        self._fleet_templates = {key: FleetTemplate([b.templates[key] for b in self.boats])
-                                 for key in ("odom", "pose", "twist", "wrench")}
-        self._fleet_pub, self._fleet_state = None, None  # every boat in one message
-        if sim.fleet_state:
-            self._fleet_pub = TappedPublisher(self, FleetStateMsg, names.FLEET_STATE,
-                                              STATE_QOS, tap)
-            self._fleet_state = FleetStateTemplate(names.WORLD_FRAME,
-                                                   [b.spec.name for b in self.boats])
-        self._transforms = TransformPublisher(self, list(scenario.boats), tap)
-        self._sensors = SensorPublisher(self, list(scenario.boats), sim, tap)
 
     def _declare_control_modes(self) -> None:
         """A ``[<boat>.]control_mode`` parameter per boat."""
@@ -341,28 +311,8 @@ class DynamicsNode(Node):
                             "control.transition s, without a jump."))
 
     def _make_boat(self, spec: BoatSpec, index: int) -> _Boat:
+        """A boat's command subscriptions (none when its commands are scripted)."""
         boat = _Boat(spec=spec, index=index)
-        child = names.child_frame(spec.name)
-        for key, cls, topic, qos in (
-            ("odom", Odometry, names.ODOM, STATE_QOS),
-            ("pose", PoseStamped, names.POSE, STATE_QOS),
-            ("twist", TwistStamped, names.TWIST, STATE_QOS),
-        ):
-            boat.pubs[key] = TappedPublisher(self, cls, names.boat_topic(spec.name, topic), qos,
-                                             self._tap)
-        last = self.boats[-1].templates if self.boats else {}  # relabelled: CdrTemplate.relabel
-        boat.templates = {"odom": odometry_template(names.WORLD_FRAME, child, last.get("odom")),
-                          "pose": pose_template(names.WORLD_FRAME, last.get("pose")),
-                          "twist": twist_template(child, last.get("twist")),
-                          "wrench": wrench_template(child, last.get("wrench"))}
-        for source in names.WRENCH_SOURCES:
-            boat.pubs[source] = TappedPublisher(
-                self, WrenchStamped, names.wrench_topic(spec.name, source), DIAGNOSTICS_QOS,
-                self._tap, self._graph)
-        if spec.params.carriage is not None:
-            boat.pubs[names.CARRIAGE_WRENCH] = TappedPublisher(
-                self, WrenchStamped, names.wrench_topic(spec.name, names.CARRIAGE_WRENCH),
-                DIAGNOSTICS_QOS, self._tap, self._graph)
         if spec.commands is None:
             thrust_topic = names.boat_topic(spec.name, names.CMD_THRUST)
             rudder_topic = names.boat_topic(spec.name, names.CMD_RUDDER)
@@ -436,8 +386,8 @@ class DynamicsNode(Node):
 
     def start(self) -> None:
         """Publish what is published once, stamped with the clock (its epoch is now known)."""
-        self._transforms.publish_static(seconds_to_time(self._sim_clock.epoch
-                                                        + self._sim_clock.t))
+        self.outputs.transforms.publish_static(seconds_to_time(self._sim_clock.epoch
+                                                               + self._sim_clock.t))
 
     # ------------------------------------------------------------------ snapshots
 
@@ -455,7 +405,7 @@ class DynamicsNode(Node):
                "boats": np.array([b.spec.name for b in boats], dtype=str),
                "modes": np.array([b.spec.params.control.mode for b in boats], dtype=str),
                "commands_received": np.asarray(self.commands_received),
-               **flatten(self._state, "state."), **self._sensors.snapshot(),
+               **flatten(self._state, "state."), **self.outputs.sensors.snapshot(),
                **self.intake.snapshot()}
         return out
 
@@ -483,7 +433,7 @@ class DynamicsNode(Node):
         self._contact, self._forces, self._towing = None, None, None
         self.commands_received = int(arrays["commands_received"])
         self.intake.restore(arrays)
-        self._sensors.restore(arrays)
+        self.outputs.sensors.restore(arrays)
 
     def boat_positions(self) -> np.ndarray:
         """(K, 2) m, world x, y of every boat's hull reference point."""
@@ -719,99 +669,52 @@ class DynamicsNode(Node):
         self._sim_clock.steps += 1
 
     def publish_outputs(self) -> None:
-        """Publish /clock, odometry and wrenches that are due at the current step."""
+        """Publish /clock, odometry, sensors, wrenches and diagnostics due at the current step."""
         k = self._sim_clock.steps
         sec, nanosec = stamp_parts(self._sim_clock.epoch + self._sim_clock.t)
         if self._clock_pub is not None:
             self._clock_pub.publish(self._clock_template.pack(sec, nanosec))
         if self._due(k, self._rate, self._publish_rate):
-            self._publish_states(sec, nanosec)
-        if len(self._sensors) and self._before is not None:
-            self._sensors.publish_due(lambda rate: self._due(k, self._rate, rate),
-                                      seconds_to_time(self._sim_clock.epoch + self._sim_clock.t),
-                                      self._system.center_of_mass, self._before, self._state)
+            self.outputs.states(sec, nanosec, self._state_values(), time.monotonic(),
+                                self._publish_tf)
+        if self._before is not None:
+            self.outputs.sensor_readings(lambda rate: self._due(k, self._rate, rate),
+                                         seconds_to_time(self._sim_clock.epoch
+                                                         + self._sim_clock.t),
+                                         self._system.center_of_mass, self._before, self._state)
         if self._due(k, self._rate, self._diag_rate):
-            self._publish_wrenches(sec, nanosec)
-            self._publish_diagnostics(sec, nanosec)
+            forces = self._forces
+            if forces is None:  # before the first step: the forces at the initial state
+                forces, _ = pipeline.forces(self._system, self._state, self._fleet_inputs(),
+                                            self._current_contact(), self.environment)
+            self.outputs.wrenches(sec, nanosec, forces, time.monotonic(),
+                                  self._carriage if self._towing is not None else None)
+            self.outputs.diagnostics(sec, nanosec, self._statuses())
 
-    def _publish_states(self, sec: int, nanosec: int) -> None:
-        """odom, pose and twist of every boat: the hull reference point's pose and twist."""
+    def _state_values(self) -> np.ndarray:
+        """(B, 13): each boat's reference point, orientation, its velocity and angular velocity.
+
+        The reference point's velocity v_com + w x (r_ref - r_com), body frame.
+        """
         state = self._state
-        # (B, 13): reference point, orientation, its velocity v_com + w x (r_ref - r_com) in
-        # the body frame, angular velocity
-        values = np.concatenate([
+        return np.concatenate([
             self._reference_points(), state.orientation,
             state.velocity - cross(state.angular_velocity, self._system.center_of_mass),
             state.angular_velocity], axis=1)
-        fleet = self._fleet_templates
-        for boat, data in zip(self.boats, fleet["odom"].pack(sec, nanosec, values),
-                              strict=True):
-            boat.pubs["odom"].publish(data)  # always
-        if self._fleet_pub is not None:
-            self._fleet_pub.publish(self._fleet_state.pack(sec, nanosec, values[:, :7],
-                                                           values[:, 7:]))
-        now = time.monotonic()
-        for key, columns in (("pose", values[:, :7]), ("twist", values[:, 7:])):
-            self._publish_wanted(key, key, sec, nanosec, columns, now)
-        if self._publish_tf:
-            self._transforms.publish(sec, nanosec, values[:, :7], now)
 
-    def _publish_wanted(self, topic_key: str, template_key: str, sec: int, nanosec: int,
-                        values: np.ndarray, now: float) -> None:
-        """A topic of every boat that wants it (subscribed or recorded), packed in one pass.
+    def _carriage(self, i: int) -> np.ndarray:
+        """(6,) boat ``i``'s carriage force and moment over the last step, body frame."""
+        return body_wrench(self._system.params[i].carriage,
+                           rotation_matrix(self._state.orientation[i]), self._towing[i])
 
-        Args:
-            topic_key: the boats' publisher (``pose``, a wrench source).
-            template_key: their fleet template (``pose``, ``wrench``).
-            sec: stamp, s part.
-            nanosec: stamp, ns part.
-            values: (B, F) float64 fields of every boat.
-            now: s, time.monotonic().
-        """
-        wanted = [b for b in self.boats if b.pubs[topic_key].wanted(now)]
-        if wanted:
-            packed = self._fleet_templates[template_key].pack(sec, nanosec, values)
-            for boat in wanted:
-                boat.pubs[topic_key].publish(packed[boat.index])
-
-    def _publish_wrenches(self, sec: int, nanosec: int) -> None:
-        """wrench/<source> of every boat: the forces that acted during the last step."""
-        forces = self._forces
-        if forces is None:  # before the first step: the forces at the initial state
-            forces, _ = pipeline.forces(self._system, self._state, self._fleet_inputs(),
-                                        self._current_contact(), self.environment)
-        now = time.monotonic()
-        for source in names.WRENCH_SOURCES:
-            wrench = getattr(forces, source)
-            self._publish_wanted(source, "wrench", sec, nanosec,
-                                 np.concatenate([wrench.force, wrench.torque], axis=1), now)
-        if self._towing is not None:
-            self._publish_carriages(sec, nanosec, now)
-
-    def _publish_carriages(self, sec: int, nanosec: int, now: float) -> None:
-        """wrench/carriage of every towed boat that wants it: the last step's carriage force."""
-        wanted = [b for b in self.boats
-                  if names.CARRIAGE_WRENCH in b.pubs and b.pubs[names.CARRIAGE_WRENCH].wanted(now)]
-        if not wanted:
-            return
-        values = np.zeros((len(self.boats), 6))
-        for boat in wanted:
-            i = boat.index
-            values[i] = body_wrench(self._system.params[i].carriage,
-                                    rotation_matrix(self._state.orientation[i]), self._towing[i])
-        packed = self._fleet_templates["wrench"].pack(sec, nanosec, values)
-        for boat in wanted:
-            boat.pubs[names.CARRIAGE_WRENCH].publish(packed[boat.index])
-
-    def _publish_diagnostics(self, sec: int, nanosec: int) -> None:
-        """/diagnostics: one status per boat (hydrostatics, mode, remedies)."""
+    def _statuses(self) -> list:
+        """/diagnostics: one status per boat (hydrostatics, mode, remedies, command counts)."""
         if self._remedies is None:
             self._remedies = ["; ".join(active_remedies(b.spec.params, self._substeps))
                               for b in self.boats]
         reports = fleet_reports(self._system, self._state, self._current_contact(),
-                                self._substeps,
-                                remedies=self._remedies)
-        self._diag_pub.publish(diagnostic_array_cdr(sec, nanosec, [
+                                self._substeps, remedies=self._remedies)
+        return [
             (f"boatsim: {boat.spec.name or 'boat'}",
              *((2, f"stopped: its state diverged at t = {self.stopped[boat.index]:.3f} s")
                if boat.index in self.stopped else (r.level, r.message)),
@@ -819,7 +722,7 @@ class DynamicsNode(Node):
               ("messages_refused", str(sum(self.refused.values()))),
               ("commands_ignored_not_finite", str(intake.ignored)),
               ("commands_clamped", str(intake.clamped))))
-            for boat, intake, r in zip(self.boats, self.intake.boats, reports, strict=True)]))
+            for boat, intake, r in zip(self.boats, self.intake.boats, reports, strict=True)]
 
 
 #: The layout of :meth:`DynamicsNode.snapshot` (a resuming process refuses another).

@@ -1,0 +1,186 @@
+"""What a dynamics node publishes of its fleet, from one object: :class:`FleetPublisher`.
+
+Every boat has topics of its own (``<boat>/odom``, ``pose``, ``twist``, ``wrench/<source>``,
+``wrench/carriage`` of a towed boat), so DDS has a publisher per boat and topic; the fleet
+publisher packs each kind for every boat in one pass (:class:`boat_msgs_py.cdr.FleetTemplate`)
+and hands each boat its message. It also owns the fleet-wide topics: /diagnostics (one status
+per boat), /boatsim/fleet_state, /tf and /tf_static, and the sensors. The node decides what is
+due at a step and gives the values; nothing here steps or reads the physics.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+from boat_msgs.msg import FleetState as FleetStateMsg
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rclpy.node import Node
+
+from boat_dynamics.physics.core.system import FleetForces, FleetState
+from boat_dynamics.physics.scenario import BoatSpec
+from boat_dynamics.physics.scenario.specs import SimulationSettings
+from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
+from boat_msgs_py import names
+from boat_msgs_py.cdr import (
+    FleetStateTemplate,
+    FleetTemplate,
+    diagnostic_array_cdr,
+    odometry_template,
+    pose_template,
+    twist_template,
+    wrench_template,
+)
+from boat_msgs_py.qos import DIAGNOSTICS_QOS, STATE_QOS
+from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
+
+__all__ = ["FleetPublisher", "StartInterrupted"]
+
+#: One status of /diagnostics: (name, level, message, ((key, value), ...)).
+Status = tuple[str, int, str, tuple[tuple[str, str], ...]]
+
+
+class StartInterrupted(RuntimeError):
+    """The node was stopped (Ctrl-C) while it was being made."""
+
+
+class FleetPublisher:
+    """Every output topic of a fleet.
+
+    Args:
+        node: the dynamics node the publishers belong to.
+        boats: the boats, in fleet order.
+        sim: the simulation settings (``fleet_state``, the sensors' seed and rates).
+        tap: the recorder's tap, or None.
+        graph: wrench topics advertised once someone subscribes (None: all from the start).
+        stopped: checked between boats: a large fleet's start-up stops on Ctrl-C (raises
+            :class:`StartInterrupted`) instead of making every boat's publishers first.
+    """
+
+    def __init__(self, node: Node, boats: Sequence[BoatSpec], sim: SimulationSettings,
+                 tap: Tap | None, graph: GraphWatch | None,
+                 stopped: Callable[[], bool] | None = None) -> None:
+        self.pubs: list[dict[str, TappedPublisher]] = []
+        templates: list[dict] = []
+        for i, spec in enumerate(boats):  # 36 ms a boat with 1000 (DDS endpoints)
+            if stopped is not None and stopped():
+                raise StartInterrupted(f"stopped while making boat {i} of {len(boats)}")
+            self.pubs.append(_boat_publishers(node, spec, tap, graph))
+            templates.append(_boat_templates(spec, templates[-1] if templates else {}))
+        self._diag_pub = TappedPublisher(node, DiagnosticArray, names.DIAGNOSTICS,
+                                         DIAGNOSTICS_QOS, tap)
+        # every boat's message of a kind packed in one pass
+        self._fleet = {key: FleetTemplate([t[key] for t in templates])
+                       for key in ("odom", "pose", "twist", "wrench")}
+        self._state_pub, self._state = None, None  # every boat in one message
+        if sim.fleet_state:
+            self._state_pub = TappedPublisher(node, FleetStateMsg, names.FLEET_STATE,
+                                              STATE_QOS, tap)
+            self._state = FleetStateTemplate(names.WORLD_FRAME, [b.name for b in boats])
+        self.transforms = TransformPublisher(node, list(boats), tap)
+        self.sensors = SensorPublisher(node, list(boats), sim, tap)
+
+    def states(self, sec: int, nanosec: int, values: np.ndarray, now: float,
+               publish_tf: bool) -> None:
+        """The odometry of every boat; pose, twist, fleet state and /tf for who wants them.
+
+        Args:
+            sec: stamp, s part.
+            nanosec: stamp, ns part.
+            values: (B, 13) each boat's reference point (m, world), orientation (x, y, z, w),
+                its velocity (m/s, body frame) and angular velocity (rad/s, body frame).
+            now: s, time.monotonic().
+            publish_tf: publish /tf too.
+        """
+        for pubs, data in zip(self.pubs, self._fleet["odom"].pack(sec, nanosec, values),
+                              strict=True):
+            pubs["odom"].publish(data)  # always
+        if self._state_pub is not None:
+            self._state_pub.publish(self._state.pack(sec, nanosec, values[:, :7],
+                                                     values[:, 7:]))
+        for key, columns in (("pose", values[:, :7]), ("twist", values[:, 7:])):
+            self._publish_wanted(key, key, sec, nanosec, columns, now)
+        if publish_tf:
+            self.transforms.publish(sec, nanosec, values[:, :7], now)
+
+    def wrenches(self, sec: int, nanosec: int, forces: FleetForces, now: float,
+                 carriage: Callable[[int], np.ndarray] | None) -> None:
+        """wrench/<source> of every boat that wants it, and wrench/carriage of towed ones.
+
+        Args:
+            sec: stamp, s part.
+            nanosec: stamp, ns part.
+            forces: the forces that acted during the last step.
+            now: s, time.monotonic().
+            carriage: boat index -> (6,) its carriage's force (N) and moment (N m), body frame,
+                or None: no carriage has acted yet.
+        """
+        for source in names.WRENCH_SOURCES:
+            wrench = getattr(forces, source)
+            self._publish_wanted(source, "wrench", sec, nanosec,
+                                 np.concatenate([wrench.force, wrench.torque], axis=1), now)
+        if carriage is None:
+            return
+        wanted = [i for i, p in enumerate(self.pubs)
+                  if names.CARRIAGE_WRENCH in p and p[names.CARRIAGE_WRENCH].wanted(now)]
+        if wanted:
+            values = np.zeros((len(self.pubs), 6))
+            for i in wanted:
+                values[i] = carriage(i)
+            packed = self._fleet["wrench"].pack(sec, nanosec, values)
+            for i in wanted:
+                self.pubs[i][names.CARRIAGE_WRENCH].publish(packed[i])
+
+    def diagnostics(self, sec: int, nanosec: int, statuses: Sequence[Status]) -> None:
+        """/diagnostics: one status per boat."""
+        self._diag_pub.publish(diagnostic_array_cdr(sec, nanosec, statuses))
+
+    def sensor_readings(self, due: Callable[[float], bool], stamp, center_of_mass: np.ndarray,
+                        before: FleetState, after: FleetState) -> None:
+        """Every sensor whose rate is ``due`` (:meth:`SensorPublisher.publish_due`)."""
+        if len(self.sensors):
+            self.sensors.publish_due(due, stamp, center_of_mass, before, after)
+
+    def _publish_wanted(self, topic_key: str, template_key: str, sec: int, nanosec: int,
+                        values: np.ndarray, now: float) -> None:
+        """A topic of every boat that wants it (subscribed or recorded), packed in one pass.
+
+        Args:
+            topic_key: the boats' publisher (``pose``, a wrench source).
+            template_key: their fleet template (``pose``, ``wrench``).
+            sec: stamp, s part.
+            nanosec: stamp, ns part.
+            values: (B, F) float64 fields of every boat.
+            now: s, time.monotonic().
+        """
+        wanted = [i for i, p in enumerate(self.pubs) if p[topic_key].wanted(now)]
+        if wanted:
+            packed = self._fleet[template_key].pack(sec, nanosec, values)
+            for i in wanted:
+                self.pubs[i][topic_key].publish(packed[i])
+
+
+def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None,
+                     graph: GraphWatch | None) -> dict[str, TappedPublisher]:
+    """One boat's publishers: odom, pose, twist, wrench/<source>, wrench/carriage if towed."""
+    pubs = {key: TappedPublisher(node, cls, names.boat_topic(spec.name, topic), STATE_QOS, tap)
+            for key, cls, topic in (("odom", Odometry, names.ODOM),
+                                    ("pose", PoseStamped, names.POSE),
+                                    ("twist", TwistStamped, names.TWIST))}
+    sources = [*names.WRENCH_SOURCES,
+               *([names.CARRIAGE_WRENCH] if spec.params.carriage is not None else [])]
+    for source in sources:
+        pubs[source] = TappedPublisher(node, WrenchStamped, names.wrench_topic(spec.name, source),
+                                       DIAGNOSTICS_QOS, tap, graph)
+    return pubs
+
+
+def _boat_templates(spec: BoatSpec, last: dict) -> dict:
+    """One boat's message templates, the last boat's relabelled (CdrTemplate.relabel)."""
+    child = names.child_frame(spec.name)
+    return {"odom": odometry_template(names.WORLD_FRAME, child, last.get("odom")),
+            "pose": pose_template(names.WORLD_FRAME, last.get("pose")),
+            "twist": twist_template(child, last.get("twist")),
+            "wrench": wrench_template(child, last.get("wrench"))}
