@@ -326,8 +326,7 @@ def _view(args: argparse.Namespace) -> int:
     from boat_dynamics.tools.bags import BagError
     from boat_dynamics.tools.view import ViewError, ViewOptions, view_bag, view_live
 
-    if (scenario := _read_scenario(args.scenario, "boatsim view")) is None:
-        return 2
+    scenario = _read_scenario(args.scenario)
     if args.save:
         Path(args.save).parent.mkdir(parents=True, exist_ok=True)
     options = ViewOptions(scenario=scenario, save=args.save, web_port=args.web_port,
@@ -342,8 +341,7 @@ def _view(args: argparse.Namespace) -> int:
             return view_bag(args.bag, options, stop=stop)
         return view_live(options, stop=stop)
     except (BagError, ViewError) as exc:
-        print(f"boatsim view: error: {exc}", file=sys.stderr)
-        return 2
+        raise CommandLineError(str(exc)) from exc
     finally:
         restore_signals()
 
@@ -396,8 +394,7 @@ def _rao(args: argparse.Namespace) -> int:
         points = rao_points(scenario, args.boat, args.wavelengths, args.directions_deg,
                             args.amplitude, args.speed)
     except (ScenarioError, RaoError) as exc:
-        print(f"boatsim rao: error: {exc}", file=sys.stderr)
-        return 2
+        raise CommandLineError(str(exc)) from exc
     boat = next(b for b in scenario.boats if args.boat in (None, b.name))
     length = boat.params.hull.length
     sea = scenario.sea
@@ -455,8 +452,7 @@ def _hydro(args: argparse.Namespace) -> int:
                                   shortest_wavelength=args.shortest_wavelength,
                                   dry_run=args.dry_run)
     except (ScenarioError, HydroError, ValueError) as exc:
-        print(f"boatsim hydro: error: {exc}", file=sys.stderr)
-        return 2
+        raise CommandLineError(str(exc)) from exc
     for f in files:
         how = ("would be made" if f.seconds is None and f.plan is not None
                else "found" if f.seconds is None else f"made in {f.seconds:.0f} s")
@@ -489,9 +485,8 @@ def _introspect(args: argparse.Namespace) -> int:
                 printed = ros.topic_echo(s, args.topic_name, out, args.once, args.full_length,
                                          timeout=args.timeout)
                 if args.once and not printed:
-                    print(f"boatsim {verb}: error: no message on {args.topic_name} within "
-                          f"{args.timeout:g} s", file=sys.stderr)
-                    return 1
+                    raise CommandLineError(f"no message on {args.topic_name} within "
+                                           f"{args.timeout:g} s", 1, f"boatsim {verb}")
                 return 0
             elif args.action == "hz":
                 ros.topic_hz(s, args.topic_name, out, args.window, timeout=args.timeout)
@@ -503,8 +498,7 @@ def _introspect(args: argparse.Namespace) -> int:
                               args.rate, times, (1 if times else 0) if wait is None else wait)
                 return 0
     except (ros.IntrospectionError, FieldError) as exc:
-        print(f"boatsim {verb}: error: {exc}", file=sys.stderr)
-        return 1
+        raise CommandLineError(str(exc), 1, f"boatsim {verb}") from exc
     print("\n".join(lines))
     return 0
 
@@ -521,7 +515,7 @@ def _param(ros, s, args) -> list[str]:
 
 
 def _compare(args: argparse.Namespace) -> int:
-    from boat_dynamics.tools.bags import BagError, compare_bags
+    from boat_dynamics.tools.bags import compare_bags
 
     tolerances = {}
     for item in args.tol:
@@ -531,15 +525,9 @@ def _compare(args: argparse.Namespace) -> int:
         except ValueError:
             tol = math.nan
         if not sep or not pattern or not math.isfinite(tol) or tol < 0:
-            print(f"boatsim compare: error: --tol {item!r}: expected FIELD=VALUE with a "
-                  "number >= 0", file=sys.stderr)
-            return 2
+            raise CommandLineError(f"--tol {item!r}: expected FIELD=VALUE with a number >= 0")
         tolerances[pattern] = tol
-    try:
-        result = compare_bags(args.a, args.b, args.topics, tolerances)
-    except BagError as exc:
-        print(f"boatsim compare: error: {exc}", file=sys.stderr)
-        return 2
+    result = compare_bags(args.a, args.b, args.topics, tolerances)  # a BagError: main's
     print(result.report(args.max_fields))
     return 0 if result.ok else 1
 
@@ -558,20 +546,16 @@ def _query(args: argparse.Namespace) -> int:
     from ocean_sim.ros.client import OceanUnavailableError, query_surface
 
     if len(args.coords) % 2:
-        print(f"boatsim query: error: coordinates come in X Y pairs; got {len(args.coords)} "
-              "numbers", file=sys.stderr)
-        return 2
+        raise CommandLineError(f"coordinates come in X Y pairs; got {len(args.coords)} numbers")
     points = list(zip(args.coords[::2], args.coords[1::2], strict=True))
     try:
         result = query_surface(points, args.sim_time, args.timeout)
     except OceanUnavailableError as exc:
-        print(f"boatsim query: error: {exc}; is `boatsim run` running on this ROS_DOMAIN_ID?",
-              file=sys.stderr)
-        return 1
+        raise CommandLineError(f"{exc}; is `boatsim run` running on this ROS_DOMAIN_ID?",
+                               1) from exc
     r = result.response
     if not r.success:
-        print(f"boatsim query: error: the ocean refused: {r.message}", file=sys.stderr)
-        return 2
+        raise CommandLineError(f"the ocean refused: {r.message}")
     when = "now" if args.sim_time is None else f"t = {args.sim_time:g} s"
     print(f"# surface at {when}: x y [m]  height [m]  normal (x y z)  velocity [m/s] (x y z)")
     for (x, y), h, n, v in zip(points, r.heights, r.normals, r.velocities, strict=True):
@@ -580,16 +564,19 @@ def _query(args: argparse.Namespace) -> int:
     return 0
 
 
-def _read_scenario(path: str | None, who: str):
-    """The scenario at ``path`` (None: the default one), or None once the error is printed."""
+def _read_scenario(path: str | None):
+    """The scenario at ``path`` (None: the default one).
+
+    Raises:
+        CommandLineError: it is invalid (exit 2), saying which file.
+    """
     from boat_dynamics.physics.scenario import ScenarioError, default_scenario_path, load_scenario
 
     path = path or default_scenario_path()
     try:
         return load_scenario(path)
     except ScenarioError as exc:
-        print(f"{who}: error: invalid scenario {path}: {exc}", file=sys.stderr)
-        return None
+        raise CommandLineError(f"invalid scenario {path}: {exc}") from exc
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -597,21 +584,18 @@ def _run(args: argparse.Namespace) -> int:
     from boat_dynamics.physics.core.pipeline import InitError
     from boat_dynamics.physics.scenario import default_scenario_path
     from boat_dynamics.ros.runner import RunOptions, run
-    from boat_dynamics.tools.recording import RecordError
     from boat_msgs_py.process import sweep_temporaries
 
     path = args.scenario or default_scenario_path()
-    if (scenario := _read_scenario(path, "boatsim")) is None:
-        return 2
+    scenario = _read_scenario(path)
     if args.verb == "_node":
         return _run_node(args, scenario, path)
     sweep_temporaries()  # what runs killed before could not remove
     for note in scenario.notes:  # the parent says it once
         print(f"boatsim: warning: {path}: {note}", file=sys.stderr)
     if args.lockstep and not args.fast:
-        print("boatsim: error: --lockstep needs --fast (a real-time run follows the wall "
-              "clock)", file=sys.stderr)
-        return 2
+        raise CommandLineError("--lockstep needs --fast (a real-time run follows the wall "
+                               "clock)")
     fast = args.fast or not scenario.simulation.realtime
     if args.only:
         return _run_only(args, scenario, path, fast)
@@ -621,11 +605,8 @@ def _run(args: argparse.Namespace) -> int:
         return run(scenario, RunOptions(fast=args.fast, duration=args.duration,
                                         record=args.record, lockstep=args.lockstep,
                                         exclude_topics=tuple(args.exclude_topics)))
-    except RecordError as exc:
-        print(f"boatsim: error: {exc}", file=sys.stderr)
-        return 2
-    except InitError as exc:
-        return _refuse_boat(path, exc, exc.boat)
+    except InitError as exc:  # (a RecordError: main's)
+        raise _refused_boat(path, exc, exc.boat) from exc
 
 
 def _run_node(args: argparse.Namespace, scenario, path) -> int:
@@ -636,8 +617,7 @@ def _run_node(args: argparse.Namespace, scenario, path) -> int:
     from boat_dynamics.ros.runner import ProcessRole, RunOptions, run
 
     if (args.epoch is None) == (args.ready_fd is None):
-        print("boatsim _node: error: exactly one of --epoch and --ready-fd", file=sys.stderr)
-        return 2
+        raise CommandLineError("exactly one of --epoch and --ready-fd")
     options = RunOptions(duration=args.duration, fast=args.fast, lockstep=args.lockstep,
                          record=args.record, exclude_topics=tuple(args.exclude_topics),
                          process=ProcessRole(role=args.role, shard=args.shard,
@@ -649,12 +629,11 @@ def _run_node(args: argparse.Namespace, scenario, path) -> int:
         return run(scenario, options, status=open(os.devnull, "w") if args.quiet
                    else sys.stderr)
     except SnapshotError as exc:
-        print(f"boatsim _node: error: cannot resume: {exc}", file=sys.stderr)
-        return 2
+        raise CommandLineError(f"cannot resume: {exc}") from exc
     except InitError as exc:
         first = 0 if args.shard is None else shard_slice(*args.shard,
                                                          len(scenario.boats)).start
-        return _refuse_boat(path, exc, first + exc.boat)
+        raise _refused_boat(path, exc, first + exc.boat) from exc
 
 
 def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
@@ -662,23 +641,17 @@ def _run_processes(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     from boat_dynamics.physics.core.pipeline import InitError, start
     from boat_dynamics.ros.processes import run_processes
     from boat_dynamics.ros.runner import ProcessRole, RunOptions
-    from boat_dynamics.tools.recording import RecordError
 
     count = len(scenario.boats) if args.processes else args.shards
     if (problem := _too_many_shards(count, len(scenario.boats))) is not None:
-        print(f"boatsim: error: --shards {count}: {problem}", file=sys.stderr)
-        return 2
+        raise CommandLineError(f"--shards {count}: {problem}")
     try:  # refused here, before any process starts (each initializes its own boats)
         start(scenario.boats, scenario.sea)
     except InitError as exc:
-        return _refuse_boat(path, exc, exc.boat)
-    try:
-        return run_processes(scenario, str(path), RunOptions(
-            duration=args.duration, record=args.record, fast=fast, lockstep=args.lockstep,
-            exclude_topics=tuple(args.exclude_topics), process=ProcessRole(shards=count)))
-    except RecordError as exc:
-        print(f"boatsim: error: {exc}", file=sys.stderr)
-        return 2
+        raise _refused_boat(path, exc, exc.boat) from exc
+    return run_processes(scenario, str(path), RunOptions(  # a RecordError: main's
+        duration=args.duration, record=args.record, fast=fast, lockstep=args.lockstep,
+        exclude_topics=tuple(args.exclude_topics), process=ProcessRole(shards=count)))
 
 
 def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
@@ -686,47 +659,42 @@ def _run_only(args: argparse.Namespace, scenario, path, fast: bool) -> int:
     from boat_dynamics.physics.core.pipeline import InitError
     from boat_dynamics.ros.barrier import shard_slice
     from boat_dynamics.ros.runner import ProcessRole, RunOptions, run
-    from boat_dynamics.tools.recording import RecordError
 
-    def refuse(message: str) -> int:
-        print(f"boatsim: error: --only {' '.join(args.only)}: {message}", file=sys.stderr)
-        return 2
+    def refuse(message: str) -> CommandLineError:
+        return CommandLineError(f"--only {' '.join(args.only)}: {message}")
 
     if not fast:
-        return refuse("the processes of a run started apart share its clock through the "
+        raise refuse("the processes of a run started apart share its clock through the "
                       "step barrier: add --fast (and --lockstep to follow a replay)")
     if args.processes:
-        return refuse("--processes starts every process itself; use --shards N")
+        raise refuse("--processes starts every process itself; use --shards N")
     role, rest = args.only[0], args.only[1:]
     if role == "ocean" and not rest:
         if not args.shards:
-            return refuse("add --shards N: the ocean owns the clock of N shards")
+            raise refuse("add --shards N: the ocean owns the clock of N shards")
         shard, shards = None, args.shards
     elif role == "shard" and len(rest) == 1:
         try:
             shard = _shard(rest[0])
         except argparse.ArgumentTypeError as exc:
-            return refuse(str(exc))
+            raise refuse(str(exc)) from exc
         shards = 0
         if args.shards not in (None, shard[1]):
-            return refuse(f"--shards {args.shards} and shard {rest[0]} disagree")
+            raise refuse(f"--shards {args.shards} and shard {rest[0]} disagree")
     else:
-        return refuse("expected `ocean` or `shard K/N`")
+        raise refuse("expected `ocean` or `shard K/N`")
     if (problem := _too_many_shards(shard[1] if shard else shards,
                                     len(scenario.boats))) is not None:
-        return refuse(problem)
+        raise refuse(problem)
     options = RunOptions(fast=True, lockstep=args.lockstep, duration=args.duration,
                          record=args.record, exclude_topics=tuple(args.exclude_topics),
                          process=ProcessRole(role=role, shard=shard, shards=shards,
                                              standalone=True))
     try:
-        return run(scenario, options)
-    except RecordError as exc:
-        print(f"boatsim: error: {exc}", file=sys.stderr)
-        return 2
+        return run(scenario, options)  # a RecordError: main's
     except InitError as exc:
         first = shard_slice(*shard, len(scenario.boats)).start if shard else 0
-        return _refuse_boat(path, exc, first + exc.boat)
+        raise _refused_boat(path, exc, first + exc.boat) from exc
 
 
 def _reindex(bag: str) -> int:
@@ -740,8 +708,7 @@ def _reindex(bag: str) -> int:
     try:
         report = reindex(bag)
     except (ReindexError, OSError) as exc:
-        print(f"boatsim reindex: error: {exc}", file=sys.stderr)
-        return 2
+        raise CommandLineError(str(exc)) from exc
     topics = "  ".join(f"{t} {n}" for t, n in sorted(report.counts.items()))
     total = sum(report.counts.values())
     if report.original is None:
@@ -767,11 +734,10 @@ def _reindex(bag: str) -> int:
     return 1
 
 
-def _refuse_boat(path, exc, index: int) -> int:
-    """Exit status 2 for a boat ``pipeline.init`` refused, named as the scenario names it."""
-    print(f"boatsim: error: invalid scenario {path}: boats[{index}].{exc.key}: {exc.value!r} "
-          f"is not allowed: {exc.allowed}", file=sys.stderr)
-    return 2
+def _refused_boat(path, exc, index: int) -> CommandLineError:
+    """A boat ``pipeline.init`` refused (exit 2), named as the scenario names it."""
+    return CommandLineError(f"invalid scenario {path}: boats[{index}].{exc.key}: "
+                            f"{exc.value!r} is not allowed: {exc.allowed}")
 
 
 def _record(args: argparse.Namespace) -> int:
@@ -815,6 +781,26 @@ _HANDLERS = {
 }
 
 
+class CommandLineError(Exception):
+    """A user's error a verb reports: ``WHO: error: MESSAGE`` on stderr, exit ``status``.
+
+    Args:
+        message: what was wrong and what is allowed.
+        status: the exit status (2: bad input; 1: a peer that is not there, a refused
+            request, as ``ros2`` exits).
+        who: the prefix, or None: the verb's (``boatsim VERB``; ``boatsim`` for ``run``).
+    """
+
+    def __init__(self, message: str, status: int = 2, who: str | None = None) -> None:
+        super().__init__(message)
+        self.status, self.who = status, who
+
+
+def _who(verb: str) -> str:
+    """The prefix of a verb's lines: ``boatsim`` for ``run`` (its log's), else ``boatsim VERB``."""
+    return "boatsim" if verb == "run" else f"boatsim {verb}"
+
+
 def _user_errors() -> tuple[type[Exception], ...]:
     """What a handler raises for a user's bad input: a value, a bag, a path, a recording."""
     from boat_dynamics.tools.bags import BagError
@@ -829,18 +815,22 @@ def _user_errors() -> tuple[type[Exception], ...]:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``boatsim``; returns the exit status.
 
-    The one place that turns a user's error into ``boatsim VERB: error: ...`` and exit status
-    2 (a bad option: argparse's own message and 2); Ctrl-C exits 0.
+    The one place that turns a user's error into ``boatsim VERB: error: ...`` and its exit
+    status: a :class:`CommandLineError`'s, 2 for the errors of :func:`_user_errors` (a bad
+    option: argparse's own message and 2); Ctrl-C exits 0. A bug shows its traceback.
     """
     try:
         args = _parser().parse_args(argv)
         return args.handler(args)
     except KeyboardInterrupt:
         return 0
+    except CommandLineError as exc:
+        print(f"{exc.who or _who(args.verb)}: error: {exc}", file=sys.stderr)
+        return exc.status
     except Exception as exc:
         if not isinstance(exc, _user_errors()):
             raise
-        print(f"boatsim {args.verb}: error: {exc}", file=sys.stderr)
+        print(f"{_who(args.verb)}: error: {exc}", file=sys.stderr)
         return 2
 
 

@@ -1,5 +1,7 @@
 """The `boatsim` command line: what `--help` shows (the verbs themselves run in tests/ros)."""
 
+from pathlib import Path
+
 import pytest
 
 from boat_dynamics.cli import main
@@ -84,3 +86,37 @@ def test_a_users_error_escaping_a_verb_is_one_line_and_exit_2(monkeypatch, capsy
     monkeypatch.setitem(cli._HANDLERS, "query", crash)
     with pytest.raises(ZeroDivisionError):  # a bug still shows its traceback
         cli.main(["query", "1", "2"])
+
+
+@pytest.mark.parametrize(("argv", "line", "status"), [
+    (["query", "1", "2", "3"],
+     "boatsim query: error: coordinates come in X Y pairs; got 3 numbers", 2),
+    (["compare", "a", "b", "--tol", "x=-1"],
+     "boatsim compare: error: --tol 'x=-1': expected FIELD=VALUE with a number >= 0", 2),
+    (["run", "--lockstep"],
+     "boatsim: error: --lockstep needs --fast (a real-time run follows the wall clock)", 2),
+    (["run", "--fast", "--only", "shard", "3/2"], "boatsim: error: --only shard 3/2: ", 2),
+    (["run", "missing.yaml"], "boatsim: error: invalid scenario missing.yaml: ", 2),
+    (["view", "--scenario", "missing.yaml"],
+     "boatsim view: error: invalid scenario missing.yaml: ", 2),
+    (["reindex", "not-a-bag"], "boatsim reindex: error: ", 2),
+])
+def test_each_verbs_refusal_is_one_line_from_main_with_its_status(argv, line, status, capsys,
+                                                                  tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == status
+    err = capsys.readouterr().err
+    assert err.startswith(line) and err.count("\n") == 1, err
+
+
+def test_only_main_prints_errors():
+    """The verbs raise CommandLineError (or a user error); main alone prints `error:` lines."""
+    import ast
+
+    from boat_dynamics import cli
+
+    tree = ast.parse(Path(cli.__file__).read_text())
+    printing = [node for node in ast.walk(tree) if isinstance(node, ast.FunctionDef)
+                and any(isinstance(c, ast.Call) and getattr(c.func, "id", None) == "print"
+                        and "error:" in ast.unparse(c) for c in ast.walk(node))]
+    assert [f.name for f in printing] == ["main"]
