@@ -229,3 +229,21 @@ def test_the_old_physics_module_names_still_import_and_say_where_they_went():
     count, warned = out.stdout.splitlines()[0].split()
     assert int(count) == 34 and warned == count, out.stdout
     assert "has moved to boat_dynamics.physics." in out.stdout
+
+
+def test_no_function_binds_a_standard_stream_at_import():
+    """A default ``status=sys.stderr`` is the stream of whoever imported the module first.
+
+    Under pytest that was one test's capture, closed when it ended: a later call printed to
+    it and raised ``ValueError: I/O operation on closed file`` (view_bag, once, by test
+    order). Streams are looked up when called (``status=None``).
+    """
+    bound = []
+    for path in sorted(SRC.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                defaults = [*node.args.defaults, *node.args.kw_defaults]
+                bound += [f"{path.relative_to(SRC)}:{node.lineno} {node.name}"
+                          for d in defaults if d is not None
+                          and ast.unparse(d) in ("sys.stderr", "sys.stdout", "sys.stdin")]
+    assert not bound, bound

@@ -288,7 +288,7 @@ def _watch(children: list[_Child], epoch: float, stopping, status: TextIO,
 
 
 def run_processes(scenario: Scenario, path: str, options: RunOptions,
-                  status: TextIO = sys.stderr) -> int:
+                  status: TextIO | None = None) -> int:
     """Run ``scenario`` (read from ``path``) in processes; returns the exit status.
 
     ``options.process.shards`` dynamics processes and an ocean process.
@@ -296,6 +296,7 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
     Raises:
         RecordError: the bag directory of ``options.record`` already exists.
     """
+    status = sys.stderr if status is None else status  # now, not at import
     record = Path(options.record) if options.record else None
     if record is not None and record.exists():  # refused here, before any process starts
         raise RecordError(f"{record} already exists; choose a new directory for the bag")

@@ -256,7 +256,7 @@ class _Status:
             self._stream.flush()
 
 
-def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) -> int:
+def run(scenario: Scenario, options: RunOptions, status: TextIO | None = None) -> int:
     """Run a scenario until its duration, Ctrl-C or SIGTERM. Returns the exit status (0).
 
     SIGINT and SIGTERM only set a flag that the loop checks after every step, so the step in
@@ -266,6 +266,7 @@ def run(scenario: Scenario, options: RunOptions, status: TextIO = sys.stderr) ->
         RecordError: the bag directory cannot be created.
         InitError: a boat's hull sinks.
     """
+    status = sys.stderr if status is None else status  # now, not at import
     sim = scenario.simulation
     fast = options.fast or not sim.realtime
     # one process in real time: provisional, until the loop starts (_Loop._epoch_at_loop_start)

@@ -284,7 +284,7 @@ def declares_only(data: bytes) -> bool:
                                                or event.deleted_parameters)
 
 
-def record(topics: list[str], out: str, status: TextIO = sys.stderr,
+def record(topics: list[str], out: str, status: TextIO | None = None,
            exclude: set[str] | frozenset[str] = frozenset()) -> int:
     """`boatsim record`: record topics (all when empty) until Ctrl-C; returns the exit status.
 
@@ -295,6 +295,7 @@ def record(topics: list[str], out: str, status: TextIO = sys.stderr,
     Raises:
         RecordError: the bag directory cannot be created.
     """
+    status = sys.stderr if status is None else status  # now, not at import
     import threading
     import time
 

@@ -189,7 +189,7 @@ def _stamp_ns(msg) -> int:
     return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
-def view_bag(bag: str | Path, options: ViewOptions, status: TextIO = sys.stderr,
+def view_bag(bag: str | Path, options: ViewOptions, status: TextIO | None = None,
              stop: threading.Event | None = None) -> int:
     """Show (or save) a bag's boats on its sea; serves until ``stop`` (Ctrl-C) unless saved.
 
@@ -197,6 +197,7 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO = sys.stderr,
         BagError: the bag cannot be read.
         ViewError: no Rerun, the ports are taken, or the bag has no odometry.
     """
+    status = sys.stderr if status is None else status  # now, not at import
     from boat_dynamics.tools.bags import BagError, odometry_topics, read_bag, read_bag_topics
     from boat_msgs_py.convert import wave_field_from_msg
 
@@ -309,13 +310,14 @@ class _Live:
             self.scene.wrench(t, boat, source, _force(msg))
 
 
-def view_live(options: ViewOptions, status: TextIO = sys.stderr,
+def view_live(options: ViewOptions, status: TextIO | None = None,
               stop: threading.Event | None = None) -> int:
     """Show the running simulation until ``stop`` (Ctrl-C) or ``options.duration``.
 
     Raises:
         ViewError: no Rerun, or the ports are taken.
     """
+    status = sys.stderr if status is None else status  # now, not at import
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
 
