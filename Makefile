@@ -20,7 +20,11 @@ ARGS ?=
 
 .PHONY: setup run view test bench lint clean regold bem browser
 
+# Then the physics core's compiled kernels: compiled once into the cache every process finds
+# (ocean_sim/physics/jit.py; loaded in about a second when warm).
 setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
+	@OPENBLAS_NUM_THREADS=1 $(VPY) -c "from ocean_sim.physics.jit import cache_dir, warm; \
+	  print(f'boatsim: compiled kernels ready in {warm():.1f} s (cache {cache_dir()})')"
 
 # The ROS wheels (with the pins the interface packages' build shares with run.txt).
 $(VENV)/.ros-installed: requirements/ros-jazzy.txt

@@ -600,6 +600,25 @@ def sample_surface(
         normals[:, 2] = 1.0
         return SurfaceSample(np.zeros(n), normals, np.zeros((n, 3)), np.zeros((n, 3)),
                              pts.copy())
+    if precision == "float64":  # compiled (surface_kernel.py); the numpy path is its oracle
+        return _sample_compiled(sea, pts, t, invert)
+    return _sample_numpy(sea, pts, t, precision, invert)
+
+
+def _sample_compiled(sea: WaveField, pts: np.ndarray, t: float, invert: bool) -> SurfaceSample:
+    """:func:`sample_surface` in float64 by the compiled kernel (a sea with components)."""
+    from ocean_sim.physics.surface_kernel import surface_f64
+
+    w = sea.weights("float64")
+    return SurfaceSample(*surface_f64(np.ascontiguousarray(pts), w.kd, _time_phase(sea, t),
+                                      w.qad, w.jac, w.outputs, invert,
+                                      INVERSION_TOLERANCE["float64"], INVERSION_MAX_ITERATIONS))
+
+
+def _sample_numpy(sea: WaveField, pts: np.ndarray, t: float, precision: Precision,
+                  invert: bool) -> SurfaceSample:
+    """:func:`sample_surface` in numpy (float32, and the compiled float64 kernel's oracle)."""
+    n = pts.shape[0]
     p0, s, c = _solve(sea, pts, t, precision, invert, INVERSION_TOLERANCE[precision],
                       INVERSION_MAX_ITERATIONS)
     w = sea.weights(precision)
