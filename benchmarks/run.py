@@ -51,16 +51,27 @@ def _sea(n: int, seed: int = 0) -> WaveField:
 
 
 def bench_waves() -> None:
-    """Time sample_surface at the issue's two sizes, each precision, with/without inversion."""
+    """Time sample_surface at a boat's and fleets' point counts, and two large sizes.
+
+    A boat's and fleets' point counts on a 3-component sea, then 1,000 points on 60 components
+    and 100,000 on 16; float64 (compiled), its numpy oracle (float64 before it was compiled),
+    float32 (numpy); with and without the inversion.
+    """
+    from ocean_sim.physics.waves import _sample_numpy
+
     print("== wave queries: sample_surface (heights, normals, velocities), "
-          f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}")
-    for points, comps, repeats in ((1_000, 60, 30), (100_000, 16, 3)):
+          f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}; float64 is compiled, "
+          "numpy64 its numpy oracle")
+    for points, comps, repeats in ((200, 3, 200), (2_000, 3, 50), (20_000, 3, 10),
+                                   (1_000, 60, 30), (100_000, 16, 3)):
         sea = _sea(comps)
         xy = np.random.default_rng(1).uniform(-200, 200, (points, 2))
         ref = sample_surface(sea, xy, 123.4).heights
-        for precision in ("float64", "float32"):
+        for precision in ("float64", "numpy64", "float32"):
             for invert in (True, False):
                 def query(sea=sea, xy=xy, precision=precision, invert=invert):
+                    if precision == "numpy64":
+                        return _sample_numpy(sea, xy, 123.4, "float64", invert)
                     return sample_surface(sea, xy, 123.4, precision=precision, invert=invert)
 
                 sec = _best_of(query, repeats)
