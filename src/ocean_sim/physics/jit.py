@@ -11,18 +11,18 @@ numba loads:
 3. when that cannot be written: ``<temp>/boatsim-numba-<uid>``, with a warning saying where
    to point ``NUMBA_CACHE_DIR`` instead (:data:`CACHE_WARNING`).
 
-``make setup`` compiles every kernel once (:func:`warm`) and prints how long it took.
+``make setup`` compiles every kernel once (each kernel module's ``warm``) and prints how long
+it took.
 """
 
 from __future__ import annotations
 
 import os
 import tempfile
-import time
 import warnings
 from pathlib import Path
 
-__all__ = ["CACHE_WARNING", "cache_dir", "kernel", "warm"]
+__all__ = ["CACHE_WARNING", "cache_dir", "kernel"]
 
 #: The warning when the chosen cache directory cannot be written (``{chosen}``, ``{used}``).
 CACHE_WARNING = ("boatsim: the compiled kernels' cache directory {chosen} cannot be written; "
@@ -69,16 +69,3 @@ def kernel(function):
     numpy oracles), not an exception; no ``fastmath``, so results keep float64 rounding.
     """
     return numba.njit(cache=True, nogil=True, error_model="numpy")(function)
-
-
-def warm() -> float:
-    """Compile (or load from the cache) every kernel of the core; returns the s it took."""
-    import numpy as np
-
-    from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
-
-    start = time.perf_counter()
-    sea = WaveField((WaveComponent(0.3, 25.0, 0.0, 0.5),))
-    sample_surface(sea, np.zeros((1, 2)), 0.0, precision="float64")
-    return time.perf_counter() - start
-

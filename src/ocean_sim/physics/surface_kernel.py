@@ -16,13 +16,14 @@ which vectorizes where libm's scalar calls do not. Pure functions of arrays.
 from __future__ import annotations
 
 import math
+import time
 
 import numba
 import numpy as np
 
 from ocean_sim.physics.jit import kernel
 
-__all__ = ["sincos", "surface_f64"]
+__all__ = ["sincos", "surface_f64", "warm"]
 
 #: As ``waves._CUSP_DET`` and ``waves._HALVINGS`` (the numpy oracle's).
 _CUSP_DET = 1e-2
@@ -234,3 +235,14 @@ def surface_f64(xy, kd, time_phase, qad, jac, outputs, invert, tol, max_iter
     normals = np.empty((n, 3))
     _normals(out, normals)
     return (out[0].copy(), normals, out[1:4].T.copy(), out[4:7].T.copy(), rest)
+
+
+def warm() -> float:
+    """Compile (or load from the cache) this module's kernels; returns the s it took."""
+    start = time.perf_counter()
+    kd, qad = np.array([[0.25], [0.0]]), np.array([[0.1, 0.0]])
+    weights = np.zeros((2, 12))
+    surface_f64(np.zeros((1, 2)), kd, np.zeros(1), qad, np.zeros((1, 3)), weights, True,
+                1e-7, 8)
+    sincos(np.zeros(1))
+    return time.perf_counter() - start

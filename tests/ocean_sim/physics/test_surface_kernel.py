@@ -28,13 +28,15 @@ def _points(seed: int, n: int = 64, offset: float = 0.0) -> np.ndarray:
 
 
 @settings(max_examples=120, deadline=None)
-@given(sea=admissible_seas(), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16),
+@given(sea=admissible_seas(max_ak=0.45), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16),
        offset=st.sampled_from([0.0, 5000.0]), budget=st.floats(0.05, 0.9))
 @example(sea=WaveField((WaveComponent(0.3, 25.0, 0.0, 0.5), WaveComponent(0.15, 12.0, 0.4, 0.5),
                         WaveComponent(0.08, 6.0, -0.3, 0.5))), t=3.0, seed=0, offset=0.0,
          budget=0.9)
 def test_the_compiled_query_equals_numpys_where_the_inversion_is_well_posed(sea, t, seed, offset,
                                                                          budget):
+    # physically possible waves (a k <= 0.45, the Stokes limit; a 5 m wave 2 m long has
+    # slopes of 16, which make its normals 16 times as sensitive to the phase's last bit), and
     # sum Q k a <= 0.9: det J >= 0.01, so rounding is not amplified by the inversion; there
     # every field agrees to 1e-12 of its largest value in the batch (at least 1: m, m/s,
     # m/s^2). A phase of 1e3 rad holds 1e-13 rad (an ulp), summed in another order by each;
@@ -97,8 +99,8 @@ def test_the_polynomial_sin_and_cos_are_within_2_ulp_of_libm(scale):
 def _start(env: dict, tmp_path) -> subprocess.CompletedProcess:
     code = ("import warnings, numpy as np; warnings.simplefilter('always')\n"
             "from ocean_sim.physics import jit\n"
-            "from ocean_sim.physics.surface_kernel import surface_f64\n"
-            "jit.warm()\n"
+            "from ocean_sim.physics.surface_kernel import surface_f64, warm\n"
+            "warm()\n"
             "print(jit.cache_dir(), sum(surface_f64.stats.cache_hits.values()))")
     return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                           timeout=600, cwd=tmp_path)
