@@ -38,9 +38,13 @@ MAX_SEA_VERTICES = 40_000
 POSE_PERIOD = 0.05
 #: The path of each boat: a point every this many s of simulation time ...
 _PATH_STEP = 0.2
-#: ... the most points kept, and the period of its redraw, s of simulation time.
+#: ... the most points kept, and the period of its redraw, s of simulation time: the points
+#: since the last whole path (its tail, ``world/paths/<boat>/tail``) every _PATH_PERIOD, the
+#: whole path (``world/paths/<boat>``) every _PATH_WHOLE_PERIOD. Redrawing the whole path every
+#: second logged 60 kB/s once it was long (O(n^2) over a run), which a live viewer must ingest.
 _PATH_POINTS = 5000
 _PATH_PERIOD = 1.0
+_PATH_WHOLE_PERIOD = 30.0
 #: Trough and crest colours of the sea, RGB.
 _TROUGH, _CREST = np.array([12, 44, 92]), np.array([96, 168, 222])
 #: Colours of the hulls (boat i gets colour i modulo the count) and of the force arrows.
@@ -143,11 +147,15 @@ class Scene:
         sea_size: m, side of the sea drawn (widened to the fleet's extent plus 20 m).
         sea_resolution: m between its grid points.
         sea_period: s of simulation time between two drawings of the sea.
+        pose_period: s of simulation time between two drawings of a boat's pose (at most).
+        wrench_period: s of simulation time between two drawings of a force arrow (at most;
+            0: every message).
     """
 
     def __init__(self, recording, shapes: dict[str, HullShape],
                  sources: Sequence[str] = DEFAULT_SOURCES, sea_size: float = 60.0,
-                 sea_resolution: float = 1.0, sea_period: float = 0.5) -> None:
+                 sea_resolution: float = 1.0, sea_period: float = 0.5,
+                 pose_period: float = POSE_PERIOD, wrench_period: float = 0.0) -> None:
         import rerun as rr
 
         self._rr, self._rec = rr, recording
@@ -160,6 +168,11 @@ class Scene:
         self._paths: dict[str, list[np.ndarray]] = {}
         self._next_path: dict[str, float] = {}
         self._next_pose: dict[str, float] = {}
+        self._pose_period, self._wrench_period = pose_period, wrench_period
+        self._next_wrench: dict[tuple[str, str], float] = {}
+        self._path_count: dict[str, int] = {}  # points ever added, per boat
+        self._path_whole: dict[str, int] = {}  # the count when the whole path was last drawn
+        self._next_path_whole = -math.inf
         self._sea_triangles = 0  # the triangle count of the sea's indices last drawn
         self._next_path_log = -math.inf
         self._focus: str | None = None  # the boat the camera follows (blueprint)
@@ -228,7 +241,8 @@ class Scene:
         self._positions[name] = p
         if t < self._next_pose.get(name, -math.inf) - 1e-9:
             return
-        self._next_pose[name] = (math.floor(t / POSE_PERIOD + 1e-9) + 1) * POSE_PERIOD
+        period = self._pose_period
+        self._next_pose[name] = (math.floor(t / period + 1e-9) + 1) * period
         self._at(t)
         self._log(self._entity(name), self._rr.Transform3D(
             translation=p, quaternion=self._rr.Quaternion(xyzw=list(orientation))))
@@ -239,22 +253,42 @@ class Scene:
             path = self._paths.setdefault(name, [])
             path.append(p)
             del path[:-_PATH_POINTS]
+            self._path_count[name] = self._path_count.get(name, 0) + 1
         if t >= self._next_path_log:
             self._next_path_log = t + _PATH_PERIOD
-            self._log_paths()
+            whole = t >= self._next_path_whole
+            if whole:
+                self._next_path_whole = t + _PATH_WHOLE_PERIOD
+            self._log_paths(whole)
 
-    def _log_paths(self) -> None:
+    def _log_paths(self, whole: bool = True) -> None:
+        """Each boat's path: the whole of it, or its tail since the whole was last drawn."""
         for name, path in self._paths.items():
-            if len(path) > 1:
-                colour = _HULL_COLOURS[self._boats[name] % len(_HULL_COLOURS)]
-                self._log(f"world/paths/{self._part(name)}", self._rr.LineStrips3D(
-                    [np.array(path)], colors=[colour], radii=[0.05]))
+            colour = _HULL_COLOURS[self._boats[name] % len(_HULL_COLOURS)]
+            entity = f"world/paths/{self._part(name)}"
+            count = self._path_count[name]
+            if whole or name not in self._path_whole:
+                if len(path) > 1:
+                    self._log(entity, self._rr.LineStrips3D([np.array(path)], colors=[colour],
+                                                            radii=[0.05]))
+                    self._path_whole[name] = count
+                tail = path[-1:]
+            else:
+                tail = path[-min(count - self._path_whole.get(name, 0) + 1, len(path)):]
+            if name in self._path_whole:
+                self._log(f"{entity}/tail", self._rr.LineStrips3D(
+                    [np.array(tail)], colors=[colour], radii=[0.05]))
 
     def wrench(self, t: float, name: str, source: str, force: Iterable[float]) -> None:
         """A force on a boat (N, body frame), drawn from above its centre of mass."""
         if source not in self.sources:
             return
         shape = self._boat(name)
+        if self._wrench_period > 0.0:
+            if t < self._next_wrench.get((name, source), -math.inf) - 1e-9:
+                return
+            period = self._wrench_period
+            self._next_wrench[name, source] = (math.floor(t / period + 1e-9) + 1) * period
         f = np.asarray(list(force), dtype=float)
         self._at(t)
         self._log(f"{self._entity(name)}/forces/{source}", self._rr.Arrows3D(

@@ -29,13 +29,24 @@ from typing import TextIO
 from urllib.parse import quote
 
 from boat_dynamics.physics.scenario import Scenario
-from boat_dynamics.tools.scene import DEFAULT_SOURCES, Scene, hull_shape
+from boat_dynamics.tools.scene import DEFAULT_SOURCES, POSE_PERIOD, Scene, hull_shape
 from boat_msgs_py import names
 
 __all__ = ["ViewError", "ViewOptions", "view_bag", "view_live"]
 
 #: How often the live view looks for new boats' odometry on the graph, s (wall).
 _DISCOVERY_PERIOD = 1.0
+#: How often the recording sends what was logged, s (wall): one chunk per entity per flush.
+#: Rerun's web viewer ingests for 10 ms per frame, and a browser drawing in software (no GPU:
+#: SwiftShader) makes about one frame a second; at Rerun's default (0.2 s: some 35 chunks per
+#: second of a live run) it fell behind the simulation by 0.7 s every second, and after ten
+#: minutes stopped drawing altogether while the server and this process held the backlog.
+_FLUSH_TICK = 2.0
+#: Live: the drawing periods of the sea, of a boat's pose and of a force arrow, s of
+#: simulation time (a bag's are finer: the whole of it is read at once, nothing lags).
+_LIVE_SEA_PERIOD = 1.0
+_LIVE_POSE_PERIOD = 0.1
+_LIVE_WRENCH_PERIOD = 0.5
 
 
 class ViewError(RuntimeError):
@@ -129,14 +140,18 @@ def _stop_server(child) -> None:
         stop_processes([child], timeout=5.0)
 
 
-def _scene(options: ViewOptions, status: TextIO) -> tuple[Scene, object, str | None, object]:
+def _scene(options: ViewOptions, status: TextIO, live: bool = False
+           ) -> tuple[Scene, object, str | None, object]:
     """A scene on a new recording, saved or served: (scene, recording, page URL, server)."""
     rr = _rerun()
-    rec = rr.RecordingStream("boatsim")
+    rec = rr.RecordingStream("boatsim", batcher_config=rr.ChunkBatcherConfig(
+        flush_tick=_FLUSH_TICK))
     shapes = ({b.name: hull_shape(b.params) for b in options.scenario.boats}
               if options.scenario is not None else {})
+    periods = ((_LIVE_SEA_PERIOD, _LIVE_POSE_PERIOD, _LIVE_WRENCH_PERIOD) if live
+               else (options.sea_period, POSE_PERIOD, 0.0))
     scene = Scene(rec, shapes, options.sources, options.sea_size, options.sea_resolution,
-                  options.sea_period)
+                  *periods)
     blueprint = scene.blueprint(*_framing(options.scenario))
     if options.save:
         rr.save(options.save, default_blueprint=blueprint, recording=rec)
@@ -322,7 +337,7 @@ def view_live(options: ViewOptions, status: TextIO | None = None,
     from rclpy.executors import SingleThreadedExecutor
 
     stop = stop or threading.Event()
-    scene, _, _, server = _scene(options, status)
+    scene, _, _, server = _scene(options, status, live=True)
     context = rclpy.Context()
     rclpy.init(context=context)
     node = rclpy.create_node("boatsim_view", context=context)

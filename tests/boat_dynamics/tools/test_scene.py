@@ -96,3 +96,49 @@ def test_poses_forces_paths_and_sea_are_drawn_in_their_frames_at_their_times():
     scene.finish()
     path = _values(scene.at("world/paths/boat")[-1][1].strips)[0]
     np.testing.assert_allclose(path[:, 0], 0.5 * 0.2 * np.arange(len(path)), atol=1e-6)
+
+
+def test_a_live_view_logs_a_bounded_amount_per_simulated_second_over_twenty_minutes():
+    """Live, the view draws at its live periods and redraws a boat's whole path only every
+    30 s (its tail every second): what it logs per simulated second stays bounded.
+
+    Before, it logged about 83 rows a simulated second and the whole path (up to 5000 points)
+    every second: a software-drawn browser fell behind by 0.7 s every second and stopped
+    drawing after ten minutes of a real-time run, while the Rerun server and the view process
+    held the backlog (measured: docs/performance.md).
+    """
+    from boat_dynamics.tools import scene as scene_module
+    from boat_dynamics.tools.view import _LIVE_POSE_PERIOD, _LIVE_SEA_PERIOD, _LIVE_WRENCH_PERIOD
+
+    spec = load_scenario(default_scenario_path()).boats[0]
+    scene = Drawn({"": hull_shape(spec.params)}, sea_size=20.0, sea_resolution=2.0,
+                  sea_period=_LIVE_SEA_PERIOD, pose_period=_LIVE_POSE_PERIOD,
+                  wrench_period=_LIVE_WRENCH_PERIOD)
+    scene.blueprint(focus="")
+    duration = 1200.0  # s of simulation time: the path reaches its 5000 points at 1000 s
+    for k in range(int(duration * 50) + 1):  # odometry at 50 Hz, wrenches at 10 Hz
+        t = k * 0.02
+        scene.pose(t, "", (2.0 * t, 5.0 * np.sin(0.01 * t), 0.1), (0.0, 0.0, 0.0, 1.0))
+        scene.sea(t, SEA)
+        if k % 5 == 0:
+            for source in scene_module.DEFAULT_SOURCES:
+                scene.wrench(t, "", source, (1500.0, 0.0, 0.0))
+    timed = [(t, e, a) for t, e, a, static in scene.drawn if not static and t is not None]
+
+    def per_second(start: float) -> tuple[float, float]:
+        """Rows a simulated second, and path points a simulated second, over a minute."""
+        rows = [(e, a) for t, e, a in timed if start <= t < start + 60.0]
+        points = sum(len(a.strips.as_arrow_array().to_pylist()[0]) for e, a in rows
+                     if e.startswith("world/paths/"))
+        return len(rows) / 60.0, points / 60.0
+
+    (rows_early, _), (rows_late, points_late) = per_second(60.0), per_second(1140.0)
+    assert rows_late <= rows_early + 0.1 and rows_late < 35.0  # was about 83 rows a second
+    # the whole path (<= 5000 points) twice a minute, and each second the tail since then
+    # (<= 30 s of points): at most about 320 points a second however long the run (measured
+    # 240; before: the whole path every second, 5000)
+    whole = 60.0 / scene_module._PATH_WHOLE_PERIOD * scene_module._PATH_POINTS / 60.0
+    tail = scene_module._PATH_WHOLE_PERIOD / scene_module._PATH_STEP + 1
+    assert points_late <= whole + tail < 0.1 * scene_module._PATH_POINTS
+    poses = scene.at("world/boat")
+    assert poses[-1][0] == pytest.approx(duration)  # still drawing at the end
