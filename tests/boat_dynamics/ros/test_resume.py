@@ -46,17 +46,22 @@ def _node(context, scenario, sink):
     return node, node.advance
 
 
+def _send(node, topic: str, value: float) -> None:
+    """A command as a subscriber receives it: the node's own subscription callback."""
+    sub, = (s for s in node.subscriptions if s.topic_name == topic)
+    sub.callback(Float64(data=value))
+
+
 def _commands(node, k):
     """The same commands to both nodes at step k: thrust, a thruster, a steering angle."""
-    plain, twin = node.boats[0], node.boats[1]
     if k == 20:
-        node._on_thrust(plain, "/plain/cmd_thrust", Float64(data=0.6))
-        node._on_rudder(plain, "/plain/cmd_rudder", Float64(data=0.2), 0.6)
+        _send(node, "/plain/cmd_thrust", 0.6)
+        _send(node, "/plain/cmd_rudder", 0.2)
     if k == 130:  # just before the snapshot: must survive it
-        node._on_thruster_thrust(twin, 1, "/twin/thrusters/right/thrust", Float64(data=0.9))
-        node._on_thruster_angle(twin, 1, "/twin/thrusters/right/angle", Float64(data=0.3))
+        _send(node, "/twin/thrusters/right/thrust", 0.9)
+        _send(node, "/twin/thrusters/right/angle", 0.3)
     if k == 170:
-        node._on_thrust(twin, "/twin/cmd_thrust", Float64(data=-0.4))
+        _send(node, "/twin/cmd_thrust", -0.4)
 
 
 def test_a_resumed_node_publishes_what_the_first_one_would_have(ros, tmp_path):
