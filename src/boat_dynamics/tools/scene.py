@@ -162,14 +162,13 @@ class Scene:
         self._shapes, self.sources = dict(shapes), tuple(sources)
         self._sea_size, self._sea_resolution, self._sea_period = (sea_size, sea_resolution,
                                                                   sea_period)
-        self._next_sea = -math.inf
         self._boats: dict[str, int] = {}  # name -> colour index, once drawn
         self._positions: dict[str, np.ndarray] = {}  # the latest, (3,) m
         self._paths: dict[str, list[np.ndarray]] = {}
         self._next_path: dict[str, float] = {}
-        self._next_pose: dict[str, float] = {}
+        # what is drawn at most every so often -> the next time it is due, s (simulation)
+        self._next_draw: dict[object, float] = {}
         self._pose_period, self._wrench_period = pose_period, wrench_period
-        self._next_wrench: dict[tuple[str, str], float] = {}
         self._path_count: dict[str, int] = {}  # points ever added, per boat
         self._path_whole: dict[str, int] = {}  # the count when the whole path was last drawn
         self._next_path_whole = -math.inf
@@ -239,10 +238,8 @@ class Scene:
         self._boat(name)
         p = np.asarray(list(position), dtype=float)
         self._positions[name] = p
-        if t < self._next_pose.get(name, -math.inf) - 1e-9:
+        if not self._due(("pose", name), t, self._pose_period):
             return
-        period = self._pose_period
-        self._next_pose[name] = (math.floor(t / period + 1e-9) + 1) * period
         self._at(t)
         self._log(self._entity(name), self._rr.Transform3D(
             translation=p, quaternion=self._rr.Quaternion(xyzw=list(orientation))))
@@ -274,7 +271,7 @@ class Scene:
                     self._path_whole[name] = count
                 tail = path[-1:]
             else:
-                tail = path[-min(count - self._path_whole.get(name, 0) + 1, len(path)):]
+                tail = path[-min(count - self._path_whole[name] + 1, len(path)):]
             if name in self._path_whole:
                 self._log(f"{entity}/tail", self._rr.LineStrips3D(
                     [np.array(tail)], colors=[colour], radii=[0.05]))
@@ -284,11 +281,8 @@ class Scene:
         if source not in self.sources:
             return
         shape = self._boat(name)
-        if self._wrench_period > 0.0:
-            if t < self._next_wrench.get((name, source), -math.inf) - 1e-9:
-                return
-            period = self._wrench_period
-            self._next_wrench[name, source] = (math.floor(t / period + 1e-9) + 1) * period
+        if not self._due(("wrench", name, source), t, self._wrench_period):
+            return
         f = np.asarray(list(force), dtype=float)
         self._at(t)
         self._log(f"{self._entity(name)}/forces/{source}", self._rr.Arrows3D(
@@ -296,11 +290,22 @@ class Scene:
             colors=[_ARROW_COLOURS.get(source, (255, 255, 255))],
             radii=[shape.arrow_radius]))
 
+    def _due(self, what: object, t: float, period: float) -> bool:
+        """Whether ``what`` is drawn at ``t``: at most every ``period`` s, on a grid of it.
+
+        When it is, the next time it is due is the next grid point (0: always due).
+        """
+        if period <= 0.0:
+            return True
+        if t < self._next_draw.get(what, -math.inf) - 1e-9:
+            return False
+        self._next_draw[what] = (math.floor(t / period + 1e-9) + 1) * period
+        return True
+
     def sea(self, t: float, field: WaveField) -> None:
         """The sea at ``t`` around the fleet, once ``sea_period`` has passed since the last."""
-        if t < self._next_sea - 1e-9:
+        if not self._due("sea", t, self._sea_period):
             return
-        self._next_sea = (math.floor(t / self._sea_period + 1e-9) + 1) * self._sea_period
         positions = np.array(list(self._positions.values())).reshape(-1, 3)[:, :2]
         if len(positions):
             low, high = positions.min(axis=0), positions.max(axis=0)
