@@ -75,7 +75,6 @@ from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
 
 __all__ = ["DynamicsNode", "LockstepRole", "SimClock", "StartInterrupted", "advertises_wrenches"]
 
-
 #: How a dynamics node takes part in a lockstep replay (see :class:`DynamicsNode`).
 LockstepRole = Literal["follow", "announce", "none"]
 

@@ -82,7 +82,7 @@ def _trial(base, kd, qad, c0, c1, theta, s, co):  # pragma: no cover  (compiled)
 
 
 @kernel
-def _fall_back(i, base, kd, qad, d, r, err, det, step, cand, rc, ec, th, sa, ca
+def _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, th, sa, ca
                ):  # pragma: no cover  (compiled)
     """Point ``i``, whose Newton step did not shrink |F|: the fixed-point step instead.
 
@@ -142,7 +142,7 @@ def _newton(base, kd, qad, jac, d, r, err, s, c, active):  # pragma: no cover  (
         ec[i] = math.sqrt(rc[0, i] * rc[0, i] + rc[1, i] * rc[1, i])
     for i in range(n):
         if active[i] and ec[i] >= err[i]:
-            _fall_back(i, base, kd, qad, d, r, err, det, step, cand, rc, ec, th, sa, ca)
+            _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, th, sa, ca)
     for j in range(m):
         for i in range(n):
             s[j, i] = sa[j, i] if active[i] else s[j, i]

@@ -158,6 +158,8 @@ class CommandIntake:
                                    thrust_t=[-math.inf] * n, thrust_out=[True] * n)
                       for n in (0 if b.script is not None else b.thrusters
                                 for b in self.targets)]
+        # the boats whose named thrusters take commands of their own (constant)
+        self._named = [i for i, b in enumerate(self.targets) if b.thrusters and b.script is None]
 
     def _check(self, i: int, raw: float, limit: float, unit: str = "") -> CommandCheck:
         """Count and check a command of boat ``i`` against [-limit, limit]."""
@@ -221,12 +223,11 @@ class CommandIntake:
         fell: list[TimedOut] = []
         commands = np.array([self._boat_inputs(i, t, timeout, fell)
                              for i in range(len(self.boats))], dtype=float).reshape(-1, 2)
-        named = [i for i, b in enumerate(self.targets) if b.thrusters and b.script is None]
-        if not named:
+        if not self._named:
             return FleetInputs(commands[:, 0], commands[:, 1]), fell
         throttle = np.repeat(commands[:, :1], MAX_THRUSTERS, axis=1)
         angle = np.repeat(commands[:, 1:2], MAX_THRUSTERS, axis=1)
-        for i in named:
+        for i in self._named:
             boat = self.boats[i]
             for j in range(len(boat.thrusts)):
                 if not boat.thrust_out[j] and t - boat.thrust_t[j] > timeout:
