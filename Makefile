@@ -24,7 +24,7 @@ ARGS ?=
 # (ocean_sim/physics/jit.py; loaded in about a second when warm).
 setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
 	@OPENBLAS_NUM_THREADS=1 $(VPY) -c "from ocean_sim.physics.jit import cache_dir; \
-	  from ocean_sim.physics.surface_kernel import warm; \
+	  from boat_dynamics.physics.kernels import warm; \
 	  print(f'boatsim: compiled kernels ready in {warm():.1f} s (cache {cache_dir()})')"
 
 # The ROS wheels (with the pins the interface packages' build shares with run.txt).

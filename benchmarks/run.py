@@ -470,9 +470,14 @@ def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--run-seconds", type=float, default=20.0)
-    parser.add_argument("--only", choices=("waves", "boat", "run", "phases", "scale"),
+    parser.add_argument("--only", choices=("instructions", "waves", "boat", "run", "phases",
+                                           "scale"),
                         help="one group only")
     args = parser.parse_args()
+    if args.only in (None, "instructions"):
+        from instructions import bench_instructions
+
+        bench_instructions()
     if args.only in (None, "waves"):
         bench_waves()
     if args.only in (None, "boat"):

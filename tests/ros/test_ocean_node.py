@@ -70,7 +70,7 @@ def test_sea_state_parameters_change_at_run_time_and_bad_changes_are_refused(boa
 
     from boat_msgs_py.convert import seconds_to_time
     xy = np.array([[3.0, 4.0], [-20.0, 7.5]])
-    expected = sample_surface(sea, xy, 2.0, precision="float32")
+    expected = sample_surface(sea, xy, 2.0)
 
     def answers_the_new_sea() -> bool:  # the surface server has its own subscription to it
         answer = probe.call(client, SampleSurface.Request(

@@ -126,7 +126,7 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
     ticks_x, ticks_y = start[0] + resolution * np.arange(n), start[1] + resolution * np.arange(n)
     gx, gy = np.meshgrid(ticks_x, ticks_y, indexing="ij")
     xy = np.column_stack([gx.ravel(), gy.ravel()])
-    heights = sample_surface(sea, xy, t, precision="float32").heights
+    heights = sample_surface(sea, xy, t).heights
     idx = np.arange(n * n).reshape(n, n)
     a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:]
     triangles = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d.ravel()], 1)])

@@ -200,7 +200,7 @@ def surface_f64(xy, kd, time_phase, qad, jac, outputs, invert, tol, max_iter
     Args:
         xy: (N, 2) m, world horizontal positions.
         kd: (2, M) rad/m, k D of every component.
-        time_phase: (M,) rad, phi - omega t reduced modulo 2 pi (``waves._time_phase``).
+        time_phase: (M,) rad, phi - omega t reduced modulo 2 pi (``waves.time_phase``).
         qad: (M, 2) m, Q a D.
         jac: (M, 3) Q a k [Dx Dx, Dx Dy, Dy Dy].
         outputs: (2M, 12) the weights of [cos, sin] (``waves._OUTPUTS``).

@@ -31,6 +31,7 @@ from ocean_sim.physics.constants import GRAVITY, TWO_PI
 from ocean_sim.physics.errors import InvalidValueError
 
 __all__ = [
+    "DEFAULT_PRECISION",
     "INVERSION_MAX_ITERATIONS",
     "INVERSION_TOLERANCE",
     "MAX_COMPONENTS",
@@ -50,18 +51,23 @@ __all__ = [
     "slope_orbit_velocity",
     "stokes_drift",
     "surface_height",
+    "time_phase",
 ]
 
 #: Horizontal residual, m, at which the rest-position inversion stops, per precision. Heights
 #: are then exact to well below 1 mm wherever the surface slope is finite.
 INVERSION_TOLERANCE = {"float64": 1e-7, "float32": 1e-5}
 
-#: Floating-point precisions of the surface queries. float64 is the reference; float32 is
-#: 5-10x faster for large batches (numpy vectorizes float32 sin/cos only). Its height error is
-#: about 2^-24 * sum_i(a_i k_i) * (distance of a point from its batch's centre): under 0.1 mm
-#: for physical seas (a k <= 0.45) over batches a few hundred metres wide.
+#: Floating-point precisions of the surface queries. float64 is the reference and the default,
+#: computed by a compiled kernel (:mod:`ocean_sim.physics.surface_kernel`), which is also the
+#: fastest at every batch size measured (docs/performance.md); float32 is numpy's
+#: (vectorized float32 sin/cos), kept selectable: its height error is about
+#: 2^-24 * sum_i(a_i k_i) * (distance of a point from its batch's centre): under 0.1 mm for
+#: physical seas (a k <= 0.45) over batches a few hundred metres wide.
 Precision = Literal["float64", "float32"]
 PRECISIONS: tuple[Precision, ...] = get_args(Precision)
+#: The precision of every surface query that does not choose one (boats, /ocean services).
+DEFAULT_PRECISION: Precision = "float64"
 
 #: Upper bound on Newton iterations of the inversion (it typically needs 3-6).
 INVERSION_MAX_ITERATIONS = 60
@@ -251,7 +257,7 @@ def _validate(wf: WaveField) -> None:
         )
 
 
-def _time_phase(wf: WaveField, t: float) -> np.ndarray:
+def time_phase(wf: WaveField, t: float) -> np.ndarray:
     """(M,) rad: phi_i - omega_i t reduced modulo 2 pi in float64, so long runs keep precision."""
     ar = wf.arrays
     return np.mod(ar.phi - np.mod(ar.omega * t, TWO_PI), TWO_PI)
@@ -266,7 +272,7 @@ def component_phases(wf: WaveField, xy: np.ndarray, t: float) -> np.ndarray:
             points for linear theory).
         t: simulation time, s.
     """
-    return np.asarray(xy, dtype=float) @ wf.arrays.kd + _time_phase(wf, t)
+    return np.asarray(xy, dtype=float) @ wf.arrays.kd + time_phase(wf, t)
 
 
 def displace(wf: WaveField, rest_xy: np.ndarray, t: float) -> np.ndarray:
@@ -285,7 +291,7 @@ def displace(wf: WaveField, rest_xy: np.ndarray, t: float) -> np.ndarray:
     out[:, :2] = p0
     if not wf.components:
         return out
-    theta = p0 @ wf.arrays.kd + _time_phase(wf, t)
+    theta = p0 @ wf.arrays.kd + time_phase(wf, t)
     out[:, :2] -= np.sin(theta) @ wf.arrays.qad
     out[:, 2] = np.cos(theta) @ wf.arrays.a
     return out
@@ -449,7 +455,7 @@ def _solve(wf: WaveField, xy: np.ndarray, t: float, precision: Precision, invert
     dt = np.dtype(precision)
     w = wf.weights(precision)
     n = xy.shape[0]
-    base = xy @ wf.arrays.kd + _time_phase(wf, t)
+    base = xy @ wf.arrays.kd + time_phase(wf, t)
     if dt != np.float64:  # reduced to [-pi, pi]: rint is several times cheaper than np.mod
         turns = base * (1.0 / TWO_PI)
         np.rint(turns, out=turns)
@@ -585,7 +591,7 @@ def sample_surface(
             (x, y) itself as the rest position: the seed notes' "ignore horizontal
             displacement" approximation, faster, with errors of order Q a k * a.
         min_wavelength: m; components shorter than this are left out (0 = all).
-        precision: "float64" (reference) or "float32" (faster for large batches).
+        precision: "float64" (the reference, compiled) or "float32" (numpy).
 
     Returns:
         The :class:`SurfaceSample` at those points, float64 arrays.
@@ -610,7 +616,7 @@ def _sample_compiled(sea: WaveField, pts: np.ndarray, t: float, invert: bool) ->
     from ocean_sim.physics.surface_kernel import surface_f64
 
     w = sea.weights("float64")
-    return SurfaceSample(*surface_f64(np.ascontiguousarray(pts), w.kd, _time_phase(sea, t),
+    return SurfaceSample(*surface_f64(np.ascontiguousarray(pts), w.kd, time_phase(sea, t),
                                       w.qad, w.jac, w.outputs, invert,
                                       INVERSION_TOLERANCE["float64"], INVERSION_MAX_ITERATIONS))
 
@@ -666,7 +672,7 @@ def slope_orbit_velocity(wf: WaveField, rest_xy: np.ndarray, t: float) -> np.nda
         return np.zeros((p0.shape[0], 2))
     ar = wf.arrays
     amplitude = wf.gravity * ar.k * ar.a / ar.omega
-    cos_theta = np.cos(p0 @ ar.kd + _time_phase(wf, t))
+    cos_theta = np.cos(p0 @ ar.kd + time_phase(wf, t))
     return cos_theta @ (amplitude[:, None] * np.stack([ar.dx, ar.dy], axis=1))
 
 
@@ -699,6 +705,22 @@ def pressure_head(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray, z: np
     z = np.asarray(z, dtype=float)
     if not wf.components:
         return -z
+    from ocean_sim.physics.linear_kernel import pressure_head_f64  # numba: loaded when used
+
+    ar = wf.arrays
+    return pressure_head_f64(_points2(rest_xy), z, np.asarray(heights, dtype=float), ar.kd,
+                             time_phase(wf, t), ar.a, ar.k, float(wf.depth), _deep(wf))
+
+
+def _points2(xy: np.ndarray) -> np.ndarray:
+    """(N, 2) float64, C-contiguous: a kernel's points."""
+    return np.ascontiguousarray(np.asarray(xy, dtype=float).reshape(-1, 2))
+
+
+def _pressure_head_numpy(wf: WaveField, rest_xy: np.ndarray, heights: np.ndarray,
+                         z: np.ndarray, t: float) -> np.ndarray:
+    """:func:`pressure_head` in numpy: the compiled kernel's oracle (a sea with components)."""
+    z = np.asarray(z, dtype=float)
     ar = wf.arrays
     eta = np.asarray(heights, dtype=float)
     cos_theta = np.cos(component_phases(wf, rest_xy, t))
@@ -762,9 +784,21 @@ def orbital_velocity(wf: WaveField, xy: np.ndarray, heights: np.ndarray, z: np.n
         t: simulation time, s.
     """
     z = np.asarray(z, dtype=float)
-    out = np.zeros((z.shape[0], 3))
     if not wf.components:
-        return out
+        return np.zeros((z.shape[0], 3))
+    from ocean_sim.physics.linear_kernel import orbital_velocity_f64  # numba: when used
+
+    ar = wf.arrays
+    return orbital_velocity_f64(_points2(xy), z, np.asarray(heights, dtype=float), ar.kd,
+                                time_phase(wf, t), ar.a * ar.omega, ar.k, ar.dx, ar.dy,
+                                float(wf.depth), _deep(wf))
+
+
+def _orbital_velocity_numpy(wf: WaveField, xy: np.ndarray, heights: np.ndarray, z: np.ndarray,
+                            t: float) -> np.ndarray:
+    """:func:`orbital_velocity` in numpy: the compiled kernel's oracle (a sea with components)."""
+    z = np.asarray(z, dtype=float)
+    out = np.zeros((z.shape[0], 3))
     ar = wf.arrays
     theta = component_phases(wf, xy, t)
     horizontal, vertical = _stretched_decay(wf, np.asarray(heights, dtype=float), z)

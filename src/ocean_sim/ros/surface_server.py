@@ -30,7 +30,7 @@ from rclpy.node import Node
 from boat_msgs_py.convert import time_to_seconds, wave_field_from_msg
 from boat_msgs_py.names import PARAMETER_EVENTS, SAMPLE_SURFACE, WAVE_FIELD
 from boat_msgs_py.qos import PARAMETER_EVENTS_QOS, WAVE_FIELD_QOS
-from ocean_sim.physics.waves import PRECISIONS, InvalidSeaStateError
+from ocean_sim.physics.waves import DEFAULT_PRECISION, PRECISIONS, InvalidSeaStateError
 from ocean_sim.ros.node import answer_sample
 
 __all__ = ["NODE_NAME", "SurfaceServer", "serve"]
@@ -54,7 +54,7 @@ class SurfaceServer(Node):
         self.now = now
         self._sea = None
         self._epoch: float | None = None
-        self._precision = "float32"  # the ocean node's default
+        self._precision = DEFAULT_PRECISION  # the ocean node's default
         self.create_subscription(WaveFieldMsg, WAVE_FIELD, self._on_field, WAVE_FIELD_QOS)
         self.create_subscription(ParameterEvent, PARAMETER_EVENTS, self._on_parameters,
                                  PARAMETER_EVENTS_QOS)

@@ -157,6 +157,9 @@ def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.
                vertex_heads: np.ndarray | None = None) -> SubmergedTriangles:
     """Clip hulls at the surface sampled at their vertices (see :func:`clip_parts`).
 
+    Compiled (:func:`boat_dynamics.physics.body.clip_kernel.clip_f64`: one pass over the
+    triangles); :func:`clip_parts` and :meth:`SubmergedTriangles.of` are its oracle.
+
     Args:
         faces: (F, 3) int, vertex indices of each triangle (several hulls may be concatenated),
             wound counter-clockwise seen from outside.
@@ -164,8 +167,9 @@ def clip_hulls(faces: np.ndarray, vertices_world: np.ndarray, vertex_depths: np.
         vertex_depths: (V,) m, surface height minus vertex height.
         vertex_heads: (V,) m, pressure head at each vertex, if not the depth (hydrostatic).
     """
-    corners = faces.T
-    heads = None if vertex_heads is None else vertex_heads.take(corners)
-    xyz, d, h, source = clip_parts(vertices_world.T.take(corners, axis=1),
-                                   vertex_depths.take(corners), heads)
-    return SubmergedTriangles.of(xyz, d, source, h)
+    from boat_dynamics.physics.body.clip_kernel import clip_f64  # numba: loaded when used
+
+    heads = vertex_depths if vertex_heads is None else vertex_heads
+    xyz, d, h, source, vector_areas = clip_f64(faces, np.ascontiguousarray(vertices_world),
+                                               vertex_depths, heads)
+    return SubmergedTriangles(xyz, d, vector_areas, source, d if vertex_heads is None else h)

@@ -105,6 +105,17 @@ def pressure_wrenches(wet: SubmergedTriangles, owner: np.ndarray, count: int,
     Returns:
         (B, 3) N forces and (B, 3) N m torques about the centres of mass, world frame.
     """
+    from boat_dynamics.physics.force_models.pressure_kernel import pressure_wrenches_f64
+
+    return pressure_wrenches_f64(wet.xyz, wet.heads, wet.vector_areas, owner, count,
+                                 np.ascontiguousarray(center_of_mass_world, dtype=float),
+                                 np.ascontiguousarray(rho_g, dtype=float))
+
+
+def _pressure_wrenches_numpy(wet: SubmergedTriangles, owner: np.ndarray, count: int,
+                             center_of_mass_world: np.ndarray, rho_g: np.ndarray
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`pressure_wrenches` in numpy: the compiled kernel's oracle."""
     p, d, vector_area = wet.xyz, wet.heads, wet.vector_areas
     dsum = d[0] + d[1] + d[2]
     com = center_of_mass_world.T.take(owner, axis=1)  # (3, T)

@@ -17,7 +17,7 @@ from typing import Literal
 import numpy as np
 
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
-from ocean_sim.physics.waves import WaveField, component_phases
+from ocean_sim.physics.waves import WaveField, component_phases, time_phase
 
 __all__ = ["diffraction_wrench", "excitation_wrench"]
 
@@ -69,6 +69,41 @@ def excitation_wrench(hydro: HydroCoefficients, sea: WaveField, reference_xy: np
     if not sea.components:
         zero = np.zeros((xy.shape[0], 6 if part == "both" else 3))
         return (zero, zero.copy()) if many or part == "both" else (zero[0], zero[0].copy())
+    from boat_dynamics.physics.potential_flow.excitation_kernel import excitation_f64
+
+    ar = sea.arrays
+    v = np.zeros((xy.shape[0], 2)) if velocity is None else np.ascontiguousarray(
+        np.broadcast_to(np.asarray(velocity, dtype=float), (xy.shape[0], 2)))
+    common = (ar.a, ar.omega, ar.k, ar.dx, ar.dy, np.arctan2(ar.dy, ar.dx),
+              np.ascontiguousarray(xy), ar.kd, time_phase(sea, t), psi, v)
+    wrenches = []
+    if part in ("diffraction", "both"):
+        wrenches.append(excitation_f64(hydro.omega, hydro.directions, hydro.diffraction,
+                                       *common, True))
+    if part in ("froude_krylov", "both"):
+        wrenches.append(excitation_f64(hydro.omega, hydro.directions, hydro.froude_krylov,
+                                       *common, False))
+    return _shaped(wrenches, part, many)
+
+
+def _shaped(wrenches: list, part: str, many: bool):
+    """:func:`excitation_wrench`'s result from its (G, 6) wrenches."""
+    if part == "both":  # (G, 6) each: diffraction then Froude-Krylov
+        return wrenches[0], wrenches[1]
+    wrench = wrenches[0]
+    if many:
+        return wrench[:, :3], wrench[:, 3:]
+    return wrench[0, :3], wrench[0, 3:]
+
+
+def _excitation_numpy(hydro: HydroCoefficients, sea: WaveField, reference_xy: np.ndarray,
+                      heading: float | np.ndarray, t: float,
+                      part: Literal["diffraction", "froude_krylov", "both"],
+                      velocity: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`excitation_wrench` in numpy: the compiled kernel's oracle (a sea with components)."""
+    xy = np.asarray(reference_xy, dtype=float)
+    many = xy.ndim == 2
+    xy, psi = np.atleast_2d(xy), np.atleast_1d(np.asarray(heading, dtype=float))
     ar = sea.arrays
     relative = np.arctan2(ar.dy, ar.dx)[None, :] - psi[:, None]  # (G, M)
     phase = np.exp(1j * component_phases(sea, xy, t))  # (G, M)
@@ -79,12 +114,7 @@ def excitation_wrench(hydro: HydroCoefficients, sea: WaveField, reference_xy: np
         omega = np.broadcast_to(ar.omega, relative.shape)
         table = hydro.froude_krylov_at(omega.ravel(), relative.ravel())
         wrenches.append(_summed(ar.a, table.reshape(*relative.shape, 6), phase))
-    if part == "both":  # (G, 6) each: diffraction then Froude-Krylov
-        return wrenches[0], wrenches[1]
-    wrench = wrenches[0]
-    if many:
-        return wrench[:, :3], wrench[:, 3:]
-    return wrench[0, :3], wrench[0, 3:]
+    return _shaped(wrenches, part, many)
 
 
 def _scattered(hydro: HydroCoefficients, ar, relative: np.ndarray, phase: np.ndarray,

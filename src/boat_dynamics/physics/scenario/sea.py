@@ -31,6 +31,7 @@ from ocean_sim.physics.environment import (
 )
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.physics.waves import (
+    DEFAULT_PRECISION,
     PRECISIONS,
     InvalidSeaStateError,
     WaveComponent,
@@ -69,7 +70,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
                               unit="kg/m^3"),
         cmd_timeout=number(d, "cmd_timeout", key, 1.0, 0.0, 3600.0, low_open=True, unit="s"),
         substeps=substeps,
-        wave_precision=choice(d, "wave_precision", key, "float32", PRECISIONS),
+        wave_precision=choice(d, "wave_precision", key, DEFAULT_PRECISION, PRECISIONS),
         datum=datum_block(d.get("datum")),
         publish_tf=flag(d, "publish_tf", key, True),
         wrench_topics=choice(d, "wrench_topics", key, "auto", WRENCH_TOPICS),

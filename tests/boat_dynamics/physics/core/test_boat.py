@@ -183,7 +183,7 @@ def test_a_scenario_boat_starts_afloat(buoyancy):
         {"buoyancy": buoyancy, "initial_pose": {"position": [3.0, -2.0, 0.0], "yaw_deg": 50}}]})
     boat = sc.boats[0]
     pos, q = reference_pose(boat.params, boat.initial)
-    water = sample_surface(sc.sea, pos[None, :2], 0.0, precision="float32")
+    water = sample_surface(sc.sea, pos[None, :2], 0.0)
     start = rotation_matrix(q) @ boat.initial.velocity
     assert abs(water.velocities[0, 2]) > 0.3  # the test means something: a fast orbit there
     assert start[2] == pytest.approx(water.velocities[0, 2], abs=1e-9)  # vertical: the water's

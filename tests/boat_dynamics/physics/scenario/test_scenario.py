@@ -193,9 +193,9 @@ def test_inertia_products_from_the_hull_or_the_scenario_and_refused_when_impossi
 
 
 def test_wave_precision_reaches_every_boat_and_is_checked():
-    assert parse_scenario({}).boats[0].params.wave_precision == "float32"
-    sc = parse_scenario({"simulation": {"wave_precision": "float64"}})
-    assert sc.simulation.wave_precision == sc.boats[0].params.wave_precision == "float64"
+    assert parse_scenario({}).boats[0].params.wave_precision == "float64"
+    sc = parse_scenario({"simulation": {"wave_precision": "float32"}})
+    assert sc.simulation.wave_precision == sc.boats[0].params.wave_precision == "float32"
     with pytest.raises(ScenarioError, match=r"simulation\.wave_precision: 'float16'.*float32"):
         parse_scenario({"simulation": {"wave_precision": "float16"}})
 
