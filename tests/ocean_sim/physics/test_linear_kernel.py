@@ -38,28 +38,31 @@ def _points(sea: WaveField, seed: int, n: int, offset: float):
     return xy, eta, z
 
 
-@settings(max_examples=150, deadline=None)
-@given(sea=admissible_seas(max_ak=0.45), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16),
-       offset=st.sampled_from([0.0, 5000.0]))
-def test_the_compiled_pressure_head_equals_numpys(sea, t, seed, offset):
-    xy, eta, z = _points(sea, seed, 80, offset)
-    got = pressure_head(sea, xy, eta, z, t)
-    want = waves._pressure_head_numpy(sea, xy, eta, z, t)
-    scale = sum(c.amplitude for c in sea.components) + np.abs(z).max()
-    assert np.abs(got - want).max() <= _relative(sea, xy) * scale
+def _head_scale(sea: WaveField, z: np.ndarray) -> float:
+    """m, the size of the pressure head: the waves' reach and the deepest point's depth."""
+    return sum(c.amplitude for c in sea.components) + float(np.abs(z).max())
 
 
-@settings(max_examples=150, deadline=None)
-@given(sea=admissible_seas(max_ak=0.45), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16),
-       offset=st.sampled_from([0.0, 5000.0]))
-def test_the_compiled_orbital_velocity_equals_numpys(sea, t, seed, offset):
-    xy, eta, z = _points(sea, seed, 80, offset)
-    got = orbital_velocity(sea, xy, eta, z, t)
-    want = waves._orbital_velocity_numpy(sea, xy, eta, z, t)
+def _velocity_scale(sea: WaveField, z: np.ndarray) -> float:
+    """m/s, the size of the orbital velocity: sum a omega, times coth(k h) at depth h."""
     ar = sea.arrays
-    scale = float(np.sum(ar.a * ar.omega)) / math.tanh(float(ar.k.min()) * min(sea.depth, 1e6))
-    assert got.shape == (80, 3)
-    assert np.abs(got - want).max() <= _relative(sea, xy) * max(scale, 1e-300)
+    return float(np.sum(ar.a * ar.omega)) / math.tanh(float(ar.k.min()) * min(sea.depth, 1e6))
+
+
+#: The compiled function, its numpy oracle, and the size of what they return.
+PAIRS = {"pressure head": (pressure_head, waves._pressure_head_numpy, _head_scale),
+         "orbital velocity": (orbital_velocity, waves._orbital_velocity_numpy, _velocity_scale)}
+
+
+@settings(max_examples=300, deadline=None)
+@given(sea=admissible_seas(max_ak=0.45), t=st.floats(0.0, 1e4), seed=st.integers(0, 2**16),
+       offset=st.sampled_from([0.0, 5000.0]), which=st.sampled_from(sorted(PAIRS)))
+def test_the_compiled_kernels_equal_their_numpy_oracles(sea, t, seed, offset, which):
+    compiled, oracle, size = PAIRS[which]
+    xy, eta, z = _points(sea, seed, 80, offset)
+    got, want = compiled(sea, xy, eta, z, t), oracle(sea, xy, eta, z, t)
+    assert got.shape == want.shape and got.shape[0] == 80
+    assert np.abs(got - want).max() <= _relative(sea, xy) * max(size(sea, z), 1e-300)
 
 
 def test_deep_water_at_the_surface_is_the_airy_closed_form():
