@@ -33,11 +33,12 @@ def _full_circle(seed: int):
        part=st.sampled_from(["diffraction", "froude_krylov", "both"]))
 def test_the_compiled_excitation_equals_numpys(seed, boats, components, t, moving, full, part):
     rng = np.random.default_rng(seed)
-    sea = WaveField(tuple(WaveComponent(float(rng.uniform(0.0, 0.5)),
-                                        float(rng.uniform(1.0, 300.0)),  # beyond both ends
-                                        float(rng.uniform(-math.pi, math.pi)), 0.5,
-                                        float(rng.uniform(0.0, 2 * math.pi)))
-                          for _ in range(components)))
+    wavelengths = rng.uniform(1.0, 300.0, components)  # beyond both ends of the table
+    # a k <= 0.1 each: sum Q k a <= 0.6, an admissible sea
+    amplitudes = rng.uniform(0.0, 0.1, components) * wavelengths / (2 * math.pi)
+    sea = WaveField(tuple(WaveComponent(float(a), float(lam), float(rng.uniform(-math.pi, math.pi)),
+                                        0.5, float(rng.uniform(0.0, 2 * math.pi)))
+                          for a, lam in zip(amplitudes, wavelengths, strict=True)))
     hydro = _full_circle(seed) if full else BOX
     xy = rng.uniform(-500.0, 500.0, (boats, 2))
     heading = rng.uniform(-10.0, 10.0, boats)
