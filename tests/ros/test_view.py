@@ -110,6 +110,36 @@ def test_the_view_listens_on_this_machine_only_unless_told(bag, boatsim):
         assert not _listening(web) and not _listening(grpc)  # the server ended with it
 
 
+def test_ctrl_c_in_the_terminal_ends_the_view_and_its_server_without_errors(bag, tmp_path):
+    """A terminal's Ctrl-C signals the whole process group. Before: the Rerun server child died
+    of it at once, and the view's last flush printed "ERROR ... transport error" and "gRPC
+    connection severed" on exit 0."""
+    import os
+    import signal
+
+    web, grpc = _free_port(), _free_port()
+    log = tmp_path / "view.log"
+    with open(log, "w") as out:
+        view = subprocess.Popen([sys.executable, "-m", "boat_dynamics", "view", str(bag),
+                                 "--scenario", MULTI, "--web-port", str(web), "--grpc-port",
+                                 str(grpc)], stdout=out, stderr=subprocess.STDOUT,
+                                start_new_session=True)  # its own group, as in a terminal
+        try:
+            deadline = time.monotonic() + 60
+            while "open http" not in log.read_text():
+                assert view.poll() is None and time.monotonic() < deadline, log.read_text()
+                time.sleep(0.2)
+            os.killpg(view.pid, signal.SIGINT)
+            assert view.wait(timeout=30) == 0, log.read_text()
+        finally:
+            if view.poll() is None:
+                os.killpg(view.pid, signal.SIGKILL)
+                view.wait()
+    text = log.read_text()
+    assert "ERROR" not in text and "Traceback" not in text, text
+    assert not _listening(web) and not _listening(grpc)  # the server ended with it
+
+
 def _free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

@@ -108,8 +108,11 @@ def _start_server(options: ViewOptions):
                "--port", str(options.grpc_port), "--web-viewer-port", str(options.web_port),
                "--server-memory-limit", "1GiB"]
     log = tempfile.TemporaryFile()  # its log: read if it fails (a pipe could fill and block)
+    # its own session: Ctrl-C in the terminal reaches only this process, which sends what it
+    # logged and then stops the server (the same SIGINT ended both at once, and the SDK's
+    # last flush printed "transport error" and "gRPC connection severed")
     child = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                             stderr=log, preexec_fn=die_with_parent)
+                             stderr=log, preexec_fn=die_with_parent, start_new_session=True)
     host = "127.0.0.1" if options.bind in ("0.0.0.0", "::") else options.bind
     deadline = time.monotonic() + _SERVER_START_TIMEOUT
     for port in (options.grpc_port, options.web_port):
@@ -132,11 +135,20 @@ def _start_server(options: ViewOptions):
     return child, host
 
 
-def _stop_server(child) -> None:
-    """End the Rerun server child (Ctrl-C ended the view)."""
+#: How long the view waits for its last logged data to reach the server when it ends, s.
+_FINAL_FLUSH_TIMEOUT = 2.0
+
+
+def _stop_server(child, recording) -> None:
+    """Send what ``recording`` holds, disconnect it, then end the Rerun server child."""
     from boat_msgs_py.process import stop_processes
 
-    if child is not None:
+    if child is None:
+        return
+    try:
+        recording.flush(timeout_sec=_FINAL_FLUSH_TIMEOUT)
+        recording.disconnect()
+    finally:
         stop_processes([child], timeout=5.0)
 
 
@@ -234,7 +246,7 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO | None = None
     events = sorted(((stamp, topic, msg) for topic, msgs in messages.items()
                      for stamp, msg in msgs), key=lambda e: e[:2])  # repeated stamps: in order
     epoch = _stamp_ns(fields[0][1]) if fields else events[0][0]
-    scene, _, url, server = _scene(options, status)
+    scene, rec, url, server = _scene(options, status)
     for stamp, topic, msg in events:
         t = (stamp - epoch) / 1e9
         if topic in boats:
@@ -250,7 +262,7 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO | None = None
         try:
             _serve(stop or threading.Event())
         finally:
-            _stop_server(server)
+            _stop_server(server, rec)
     return 0
 
 
@@ -337,7 +349,7 @@ def view_live(options: ViewOptions, status: TextIO | None = None,
     from rclpy.executors import SingleThreadedExecutor
 
     stop = stop or threading.Event()
-    scene, _, _, server = _scene(options, status, live=True)
+    scene, rec, _, server = _scene(options, status, live=True)
     context = rclpy.Context()
     rclpy.init(context=context)
     node = rclpy.create_node("boatsim_view", context=context)
@@ -366,5 +378,5 @@ def view_live(options: ViewOptions, status: TextIO | None = None,
                   file=status)
             _serve(stop)
     finally:
-        _stop_server(server)
+        _stop_server(server, rec)
     return 0
