@@ -474,10 +474,6 @@ def main() -> None:
                                            "scale"),
                         help="one group only")
     args = parser.parse_args()
-    if args.only in (None, "instructions"):
-        from instructions import bench_instructions
-
-        bench_instructions()
     if args.only in (None, "waves"):
         bench_waves()
     if args.only in (None, "boat"):
@@ -494,6 +490,10 @@ def main() -> None:
         print("== boatsim run --fast in processes: one process against --shards N")
         bench_split()
         bench_scale(args.run_seconds / 2)
+    if args.only in (None, "instructions"):  # last: minutes under valgrind
+        from instructions import bench_instructions
+
+        bench_instructions()
 
 
 if __name__ == "__main__":
