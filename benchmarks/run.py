@@ -219,6 +219,23 @@ def bench_run(seconds: float, boats: int) -> None:
           f"{max(totals):.2f} with set-up)")
 
 
+def phase_patches() -> list[tuple[object, str, str]]:
+    """(owner, attribute, label) of every phase :func:`bench_phases` times (tests check them)."""
+    from boat_dynamics.ros import node as node_module
+    from boat_dynamics.ros import outputs
+    from boat_dynamics.ros import runner as simulation
+
+    return [
+        (pipeline, "step", "physics (pipeline.step)"),
+        (node_module, "fleet_reports", "/diagnostics reports"),
+        (outputs.FleetPublisher, "states", "odom, pose, twist"),
+        (outputs.FleetPublisher, "wrenches", "wrench/*"),
+        (node_module.DynamicsNode, "publish_outputs", "all publishing"),
+        (simulation.OceanNode, "advance", "/ocean/surface"),
+        (simulation, "spin_pending", "ROS callbacks (spin)"),
+    ]
+
+
 def bench_phases(seconds: float, boats: int) -> None:
     """Where a step of `run --fast` goes: wall time per step of each phase (timed by wrappers).
 
@@ -227,7 +244,6 @@ def bench_phases(seconds: float, boats: int) -> None:
     """
     import io
 
-    from boat_dynamics.ros import node as node_module
     from boat_dynamics.ros import runner as simulation
 
     _quiet_nodes()
@@ -246,16 +262,8 @@ def bench_phases(seconds: float, boats: int) -> None:
         setattr(owner, name, wrapper)
         return original
 
-    patches = [
-        (pipeline, "step", "physics (pipeline.step)"),
-        (node_module, "fleet_reports", "/diagnostics reports"),
-        (node_module.DynamicsNode, "_publish_states", "odom, pose, twist"),
-        (node_module.DynamicsNode, "_publish_wrenches", "wrench/*"),
-        (node_module.DynamicsNode, "publish_outputs", "all publishing"),
-        (simulation.OceanNode, "advance", "/ocean/surface"),
-        (simulation, "_spin_pending", "ROS callbacks (spin)"),
-    ]
-    originals = [(owner, name, timed(owner, name, label)) for owner, name, label in patches]
+    originals = [(owner, name, timed(owner, name, label))
+                 for owner, name, label in phase_patches()]
     try:
         run_options = simulation.RunOptions(fast=True, duration=seconds)
         simulation.run(parse_scenario(_fleet(boats)), run_options, status=io.StringIO())
