@@ -14,14 +14,13 @@ import time
 
 import numpy as np
 
+from boat_dynamics.physics.potential_flow.hydro import _MIRRORED  # one table for both
 from ocean_sim.physics.jit import kernel
 from ocean_sim.physics.surface_kernel import _sincos
 
 __all__ = ["excitation_f64", "warm"]
 
 _TWO_PI = 2.0 * math.pi
-#: As ``hydro._MIRRORED``: the dofs that change sign when a wave's direction is mirrored.
-_MIRRORED = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
 
 
 @kernel
