@@ -17,7 +17,7 @@ import numpy as np
 
 from ocean_sim.physics.jit import kernel
 
-__all__ = ["clip_f64", "warm"]
+__all__ = ["clip_f64", "warm", "wet_centroids_f64"]
 
 #: As ``clip._PARTS_BY_CODE``: up to two parts by wet-corner code, indices into
 #: (V0, V1, V2, E01, E12, E20); -1 = no part.
@@ -104,9 +104,38 @@ def clip_f64(faces, vertices, depths, heads):  # pragma: no cover  (compiled)
     return xyz, d, h, source, va
 
 
+@kernel
+def wet_centroids_f64(xyz, depths, vector_areas):  # pragma: no cover  (compiled)
+    """The parts' centroids, the surface height over them and their areas.
+
+    Args:
+        xyz: (3, 3, T) m, the parts' corners (``clip_f64``'s layout), world frame.
+        depths: (3, T) m, the corners' depths below the surface.
+        vector_areas: (3, T) m^2.
+
+    Returns:
+        (T, 3) m centroids; (T,) m the surface height above them, the mean of the corners'
+        z + depth (linear over the part); (T,) m^2 areas. As ``SubmergedTriangles.centroids``
+        and ``.areas`` and ``(xyz[2] + depths).mean(axis=0)``, their oracles.
+    """
+    count = depths.shape[1]
+    centroids, eta, areas = np.empty((count, 3)), np.empty(count), np.empty(count)
+    for t in range(count):
+        for k in range(3):
+            centroids[t, k] = (xyz[k, 0, t] + xyz[k, 1, t] + xyz[k, 2, t]) / 3.0
+        eta[t] = ((xyz[2, 0, t] + depths[0, t]) + (xyz[2, 1, t] + depths[1, t])
+                  + (xyz[2, 2, t] + depths[2, t])) / 3.0
+        areas[t] = np.sqrt(vector_areas[0, t] * vector_areas[0, t]
+                           + vector_areas[1, t] * vector_areas[1, t]
+                           + vector_areas[2, t] * vector_areas[2, t])
+    return centroids, eta, areas
+
+
 def warm() -> float:
     """Compile (or load from the cache) this module's kernel; returns the s it took."""
     start = time.perf_counter()
     faces = np.array([[0, 1, 2]], dtype=np.int64)
-    clip_f64(faces, np.eye(3), np.array([1.0, -1.0, 0.5]), np.array([1.0, -1.0, 0.5]))
+    xyz, d, _, _, va = clip_f64(faces, np.eye(3), np.array([1.0, -1.0, 0.5]),
+                                np.array([1.0, -1.0, 0.5]))
+    wet_centroids_f64(xyz, d, va)
     return time.perf_counter() - start

@@ -235,7 +235,27 @@ def integrate_coupled(
 
     Returns:
         New (position, orientation, velocity, angular_velocity).
+
+    Compiled (:func:`boat_dynamics.physics.body.rigid_body_kernel.integrate_coupled_f64`);
+    ``_integrate_coupled_numpy`` is its oracle.
     """
+    from boat_dynamics.physics.body.rigid_body_kernel import integrate_coupled_f64
+
+    shape = np.shape(velocity)
+    rows = [np.ascontiguousarray(a, dtype=float).reshape(-1, *tail) for a, tail in (
+        (position, (3,)), (orientation, (4,)), (velocity, (3,)), (angular_velocity, (3,)),
+        (force, (3,)), (torque, (3,)), (mass, ()), (inertia, (3, 3)),
+        (mass_matrix_inverse, (6, 6)))]
+    p, q, v, w = integrate_coupled_f64(*rows, dt)
+    return (p.reshape(shape), q.reshape((*shape[:-1], 4)), v.reshape(shape), w.reshape(shape))
+
+
+def _integrate_coupled_numpy(position: np.ndarray, orientation: np.ndarray,
+                             velocity: np.ndarray, angular_velocity: np.ndarray,
+                             force: np.ndarray, torque: np.ndarray, mass: np.ndarray,
+                             inertia: np.ndarray, mass_matrix_inverse: np.ndarray, dt: float
+                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`integrate_coupled` in numpy: the compiled kernel's oracle."""
     spin = np.einsum("...ij,...j->...i", inertia, angular_velocity)
     rhs = np.concatenate([force - mass[..., None] * cross(angular_velocity, velocity),
                           torque - cross(angular_velocity, spin)], axis=-1)

@@ -209,24 +209,26 @@ def hull_water_velocity(sea: WaveField, t: float, group: Group, world: np.ndarra
         wet: the clipped triangles (mesh group).
         wet_owner: (T,) int, their boats (mesh group).
     """
-    count = group.index.shape[0]
+    from boat_dynamics.physics.body.clip_kernel import wet_centroids_f64  # numba: when used
+    from boat_dynamics.physics.body.owner_kernel import weighted_mean_by_owner_f64
+
     if wet is not None:
-        where, owner, weights = wet.centroids, wet_owner, wet.areas
-        eta = (wet.xyz[2] + wet.depths).mean(axis=0)
+        where, eta, weights = wet_centroids_f64(wet.xyz, wet.depths, wet.vector_areas)
+        owner = wet_owner
     else:
         under = surface.heights > world[:, 2]
         where, owner = world[under], group.owner[under]
         weights, eta = np.ones(where.shape[0]), surface.heights[under]
     u = orbital_velocity(sea, where[:, :2], eta, where[:, 2], t)
-    sums = sum_by_owner(np.column_stack([u * weights[:, None], weights]), owner, count)
-    wetted = sums[:, 3] > 0.0
-    return np.where(wetted[:, None], sums[:, :3] / np.where(wetted, sums[:, 3], 1.0)[:, None],
-                    at_reference.velocities)
+    return weighted_mean_by_owner_f64(u, weights, owner,
+                                      np.ascontiguousarray(at_reference.velocities))
 
 
 def _world_points(system: System, rot: np.ndarray, ref: np.ndarray) -> list:
     """(group, (E, 3) m world positions of its vertices / points) for every group."""
-    return [(g, ref[g.index][g.owner] + np.einsum("eij,ej->ei", rot[g.index][g.owner], g.body))
+    from boat_dynamics.physics.body.owner_kernel import to_world_f64  # numba: when used
+
+    return [(g, to_world_f64(rot[g.index], ref[g.index], g.owner, g.body))
             for g in system.groups]
 
 

@@ -11,6 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from boat_dynamics.physics.body.clip import SubmergedTriangles, clip_hulls, clip_parts
+from boat_dynamics.physics.body.clip_kernel import wet_centroids_f64
 from boat_dynamics.physics.body.hull import BoxHull, box_mesh
 
 
@@ -64,3 +65,17 @@ def test_nothing_wet_gives_empty_arrays_of_the_right_shapes():
     wet = clip_hulls(mesh.faces, mesh.vertices, np.full(mesh.vertices.shape[0], -1.0))
     assert wet.xyz.shape == (3, 3, 0) and wet.depths.shape == (3, 0)
     assert wet.vector_areas.shape == (3, 0) and wet.faces.shape == (0,)
+
+
+@settings(max_examples=100, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), vertices=st.integers(3, 40), faces=st.integers(0, 80))
+def test_the_wet_parts_centroids_heights_and_areas_equal_numpys(seed, vertices, faces):
+    rng = np.random.default_rng(seed)
+    xyz = rng.normal(size=(vertices, 3)) * rng.uniform(0.01, 100.0)
+    depths = rng.normal(size=vertices)
+    wet = clip_hulls(rng.integers(0, vertices, size=(faces, 3)), xyz, depths)
+    centroids, eta, areas = wet_centroids_f64(wet.xyz, wet.depths, wet.vector_areas)
+    np.testing.assert_array_equal(centroids, wet.centroids)
+    np.testing.assert_array_equal(areas, wet.areas)
+    np.testing.assert_allclose(eta, (wet.xyz[2] + wet.depths).mean(axis=0), rtol=1e-15,
+                               atol=1e-13 * (np.abs(wet.xyz[2]).max(initial=0.0) + 1.0))
