@@ -17,7 +17,10 @@ KERNEL_MODULES = (
     "ocean_sim.physics.surface_kernel",
     "ocean_sim.physics.linear_kernel",
     "boat_dynamics.physics.body.clip_kernel",
+    "boat_dynamics.physics.body.owner_kernel",
+    "boat_dynamics.physics.body.rigid_body_kernel",
     "boat_dynamics.physics.potential_flow.excitation_kernel",
+    "boat_dynamics.physics.potential_flow.memory_kernel",
     "boat_dynamics.physics.force_models.pressure_kernel",
 )
 

@@ -70,8 +70,7 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
                                         state.angular_velocity)
     carried = contact.immersion  # a hull out of the water leaves its fluid behind
     if system.memory is not None and state.memory is not None:  # Cummins: the waves made
-        made = memory_wrench(system.memory.output, state.memory)
-        damp = damp + Wrench(made[0] * carried[:, None], made[1] * carried[:, None])
+        damp = damp + Wrench(*memory_wrench(system.memory.output, state.memory, carried))
     if system.coupled:  # a 6 x 6 added mass at forward speed: the Munk moment
         damp = damp + _added_mass_at_speed(system, state, rot, environment, carried)
     if system.lift is not None:  # the trailing section's lift at speed
@@ -127,8 +126,8 @@ def _added_mass_at_speed(system: System, state: FleetState, rot: np.ndarray,
     """
     i = np.array(system.coupled, dtype=np.intp)
     velocity = _through_current(state.velocity[i], rot[i], environment)
-    added = system.added_mass_matrix * carried[i, None, None]
-    total = added_mass_coriolis(added, velocity, state.angular_velocity[i])
+    total = added_mass_coriolis(system.added_mass_matrix, velocity, state.angular_velocity[i],
+                                carried[i])
     if i.shape[0] == system.count:
         return total
     force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))

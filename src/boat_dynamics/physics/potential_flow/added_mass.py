@@ -60,17 +60,32 @@ def kirchhoff(added_mass: np.ndarray, nu: np.ndarray) -> np.ndarray:
 
 
 def added_mass_coriolis(added_mass: np.ndarray, velocity: np.ndarray,
-                        angular_velocity: np.ndarray) -> Wrench:
+                        angular_velocity: np.ndarray, carried: np.ndarray | None = None
+                        ) -> Wrench:
     """Q of the horizontal-plane motion (surge, sway, yaw), on those three dofs.
+
+    Compiled (:func:`.memory_kernel.kirchhoff_f64`; ``_added_mass_coriolis_numpy`` its oracle).
 
     Args:
         added_mass: (B, 6, 6) kg, kg m, kg m^2.
         velocity: (B, 3) m/s, body frame, relative to the current.
         angular_velocity: (B, 3) rad/s, body frame.
+        carried: (B,) in [0, 1], the share of ``added_mass`` each hull carries; None: 1.
 
     Returns:
         (B, 3) N and (B, 3) N m, body frame, about the centres of mass.
     """
+    from boat_dynamics.physics.potential_flow.memory_kernel import kirchhoff_f64
+
+    added = np.ascontiguousarray(added_mass, dtype=float)
+    share = np.ones(added.shape[0]) if carried is None else np.asarray(carried, dtype=float)
+    return Wrench(*kirchhoff_f64(added, share, np.ascontiguousarray(velocity, dtype=float),
+                                 np.ascontiguousarray(angular_velocity, dtype=float)))
+
+
+def _added_mass_coriolis_numpy(added_mass: np.ndarray, velocity: np.ndarray,
+                               angular_velocity: np.ndarray) -> Wrench:
+    """:func:`added_mass_coriolis` in numpy: the compiled kernel's oracle."""
     nu = np.concatenate([velocity, angular_velocity], axis=1) * _HORIZONTAL
     q = kirchhoff(added_mass, nu) * _HORIZONTAL
     return Wrench(q[:, :3], q[:, 3:])

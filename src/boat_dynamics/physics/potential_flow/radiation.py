@@ -214,13 +214,28 @@ def fit_memory(hydro: HydroCoefficients, tolerance: float = 0.03) -> RadiationMe
     return best
 
 
-def memory_wrench(output: np.ndarray, memory: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def memory_wrench(output: np.ndarray, memory: np.ndarray, carried: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """(B, 3) force and (B, 3) torque of the memory: -Re[output z], body frame, about the CoM.
+
+    Compiled (:func:`.memory_kernel.memory_wrench_f64`; ``_memory_wrench_numpy`` its oracle).
 
     Args:
         output: (B, 6, N) complex, the boats' memory outputs.
         memory: (B, N) complex, their memory states z.
+        carried: (B,) in [0, 1], the share of its fluid each hull carries (scales the
+            wrench); None: 1.
     """
+    from boat_dynamics.physics.potential_flow.memory_kernel import memory_wrench_f64
+
+    share = np.ones(output.shape[0]) if carried is None else np.asarray(carried, dtype=float)
+    return memory_wrench_f64(np.ascontiguousarray(output, dtype=complex),
+                             np.ascontiguousarray(memory, dtype=complex), share)
+
+
+def _memory_wrench_numpy(output: np.ndarray, memory: np.ndarray
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`memory_wrench` in numpy (carried 1): the compiled kernel's oracle."""
     wrench = -np.einsum("bin,bn->bi", output, memory).real
     return wrench[:, :3], wrench[:, 3:]
 
@@ -231,6 +246,7 @@ def advance(poles: np.ndarray, input_: np.ndarray, memory: np.ndarray, before: n
 
     Exact for that velocity (first-order hold): z+ = e^{p dt} z + psi0 u0 + psi1 (u1 - u0),
     u = input nu, psi0 = (e^{p dt} - 1) / p, psi1 = (e^{p dt} - 1 - p dt) / (p^2 dt).
+    Compiled (:func:`.memory_kernel.advance_f64`; ``_advance_numpy`` its oracle).
 
     Args:
         poles: (B, N) complex, 1/s.
@@ -240,6 +256,18 @@ def advance(poles: np.ndarray, input_: np.ndarray, memory: np.ndarray, before: n
         after: (B, 6) at its end.
         dt: s.
     """
+    from boat_dynamics.physics.potential_flow.memory_kernel import advance_f64
+
+    return advance_f64(np.ascontiguousarray(poles, dtype=complex),
+                       np.ascontiguousarray(input_, dtype=complex),
+                       np.ascontiguousarray(memory, dtype=complex),
+                       np.ascontiguousarray(before, dtype=float),
+                       np.ascontiguousarray(after, dtype=float), float(dt))
+
+
+def _advance_numpy(poles: np.ndarray, input_: np.ndarray, memory: np.ndarray,
+                   before: np.ndarray, after: np.ndarray, dt: float) -> np.ndarray:
+    """:func:`advance` in numpy: the compiled kernel's oracle."""
     decay = np.exp(poles * dt)
     psi0 = (decay - 1.0) / poles
     psi1 = (decay - 1.0 - poles * dt) / (poles**2 * dt)
