@@ -134,3 +134,20 @@ def test_numba_cache_dir_is_honoured(tmp_path):
                          timeout=120)
     assert run.returncode == 0, run.stderr
     assert run.stdout.split() == [str(tmp_path / "mine")] * 2 and not run.stderr
+
+
+@settings(max_examples=10, deadline=None)
+@given(sea=admissible_seas(), t=st.floats(0.0, 1e3), seed=st.integers(0, 2**16))
+def test_a_point_is_answered_alike_in_any_block_and_any_batch(sea, t, seed):
+    """The query goes in blocks of points (surface_kernel._BLOCK phases): a point's answer,
+    to the last bit, is the one it gets asked alone, wherever the blocks cut the batch."""
+    from ocean_sim.physics.surface_kernel import _BLOCK
+
+    n = 2 * _BLOCK // max(len(sea.components), 1) + 37  # three blocks, the last one short
+    xy = _points(seed, n)
+    batch = sample_surface(sea, xy, t, precision="float64")
+    for i in np.random.default_rng(seed).choice(n, size=12, replace=False):
+        alone = sample_surface(sea, xy[i:i + 1], t, precision="float64")
+        for name in FIELDS:
+            np.testing.assert_array_equal(getattr(batch, name)[i], getattr(alone, name)[0],
+                                          err_msg=name)
