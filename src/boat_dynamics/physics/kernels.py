@@ -22,6 +22,7 @@ KERNEL_MODULES = (
     "boat_dynamics.physics.potential_flow.excitation_kernel",
     "boat_dynamics.physics.potential_flow.memory_kernel",
     "boat_dynamics.physics.force_models.pressure_kernel",
+    "boat_dynamics.physics.force_models.actuator_kernel",
 )
 
 

@@ -72,6 +72,27 @@ def thrust(model: Propulsion, throttle, nozzle_angle, center_of_mass: np.ndarray
     Returns:
         The thrust wrench about the centre of mass, body frame, (..., 3) each.
     """
+    throttle = np.asarray(throttle, dtype=float)
+    if throttle.ndim == 1 and np.ndim(center_of_mass) == 2:  # a group of boats: compiled
+        return _thrust_compiled(model, throttle, nozzle_angle, center_of_mass)
+    return _thrust_numpy(model, throttle, nozzle_angle, center_of_mass)
+
+
+def _thrust_compiled(model: Propulsion, throttle: np.ndarray, nozzle_angle,
+                     center_of_mass: np.ndarray) -> Wrench:
+    """:func:`thrust` for a group's (G,) throttles (``actuator_kernel.thrust_f64``)."""
+    from boat_dynamics.physics.force_models.actuator_kernel import stacked, thrust_f64
+
+    g = throttle.shape[0]
+    return Wrench(*thrust_f64(
+        stacked(throttle, g), stacked(nozzle_angle, g), stacked(model.max_thrust, g),
+        stacked(model.direction, g, 3), stacked(model.position, g, 3),
+        stacked(center_of_mass, g, 3), bool(model.steerable), bool(model.at_center_of_mass)))
+
+
+def _thrust_numpy(model: Propulsion, throttle, nozzle_angle, center_of_mass: np.ndarray
+                  ) -> Wrench:
+    """:func:`thrust` in numpy (any shapes; the compiled kernel's oracle)."""
     direction = np.asarray(model.direction, dtype=float)
     if model.steerable:
         angle = -np.asarray(nozzle_angle, dtype=float)

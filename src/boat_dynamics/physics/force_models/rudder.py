@@ -98,14 +98,11 @@ def rudder_wrench(model: Rudder, angle, velocity, angular_velocity, water_densit
                                 np.shape(center_of_mass)[:-1])
     zero = np.zeros(shape)
     if model.model == "lift":
-        arm = np.asarray(model.position) - center_of_mass
-        local = velocity + cross(np.asarray(angular_velocity, dtype=float), arm)
-        u, v = local[..., 0], local[..., 1]
-        area, skeg = np.asarray(model.area), np.asarray(model.skeg_area)
-        side = (-0.5 * np.asarray(water_density) * model.lift_coefficient * np.sqrt(u * u + v * v)
-                * (area * (u * np.sin(angle) + v * np.cos(angle)) + skeg * v))
-        force = np.stack([zero, zero + side, zero], axis=-1)
-        return Wrench(force, cross(arm, force))
+        if velocity.ndim == 2:  # a group of boats: compiled
+            return _lift_compiled(model, angle, velocity, angular_velocity, water_density,
+                                  center_of_mass)
+        return _lift_numpy(model, angle, velocity, angular_velocity, water_density,
+                           center_of_mass, zero)
     u = velocity[..., 0]
     fraction = angle / model.max_angle
     if model.model == "torque":
@@ -116,3 +113,29 @@ def rudder_wrench(model: Rudder, angle, velocity, angular_velocity, water_densit
     else:
         return Wrench(np.zeros((*shape, 3)), np.zeros((*shape, 3)))
     return Wrench(np.zeros((*shape, 3)), np.stack([zero, zero, zero + yaw], axis=-1))
+
+
+def _lift_compiled(model: Rudder, angle: np.ndarray, velocity: np.ndarray, angular_velocity,
+                   water_density, center_of_mass: np.ndarray) -> Wrench:
+    """The ``lift`` model for (G, 3) velocities (``actuator_kernel.rudder_lift_f64``)."""
+    from boat_dynamics.physics.force_models.actuator_kernel import rudder_lift_f64, stacked
+
+    g = velocity.shape[0]
+    return Wrench(*rudder_lift_f64(
+        stacked(angle, g), stacked(velocity, g, 3), stacked(angular_velocity, g, 3),
+        stacked(water_density, g), stacked(model.lift_coefficient, g), stacked(model.area, g),
+        stacked(model.skeg_area, g), stacked(model.position, g, 3),
+        stacked(center_of_mass, g, 3)))
+
+
+def _lift_numpy(model: Rudder, angle: np.ndarray, velocity: np.ndarray, angular_velocity,
+                water_density, center_of_mass: np.ndarray, zero: np.ndarray) -> Wrench:
+    """The ``lift`` model in numpy (any shapes; the compiled kernel's oracle)."""
+    arm = np.asarray(model.position) - center_of_mass
+    local = velocity + cross(np.asarray(angular_velocity, dtype=float), arm)
+    u, v = local[..., 0], local[..., 1]
+    area, skeg = np.asarray(model.area), np.asarray(model.skeg_area)
+    side = (-0.5 * np.asarray(water_density) * model.lift_coefficient * np.sqrt(u * u + v * v)
+            * (area * (u * np.sin(angle) + v * np.cos(angle)) + skeg * v))
+    force = np.stack([zero, zero + side, zero], axis=-1)
+    return Wrench(force, cross(arm, force))
