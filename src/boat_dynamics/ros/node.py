@@ -677,10 +677,9 @@ class DynamicsNode(Node):
             self.outputs.states(sec, nanosec, self._state_values(), time.monotonic(),
                                 self._publish_tf)
         if self._before is not None:
-            self.outputs.sensor_readings(lambda rate: self._due(k, self._rate, rate),
-                                         seconds_to_time(self._sim_clock.epoch
-                                                         + self._sim_clock.t),
-                                         self._system.center_of_mass, self._before, self._state)
+            self.outputs.sensor_readings(lambda rate: self._due(k, self._rate, rate), sec,
+                                         nanosec, self._system.center_of_mass, self._before,
+                                         self._state)
         if self._due(k, self._rate, self._diag_rate):
             forces = self._forces
             if forces is None:  # before the first step: the forces at the initial state
@@ -713,12 +712,12 @@ class DynamicsNode(Node):
                               for b in self.boats]
         reports = fleet_reports(self._system, self._state, self._current_contact(),
                                 self._substeps, remedies=self._remedies)
+        refused = ("messages_refused", str(sum(self.refused.values())))  # the node's
         return [
             (f"boatsim: {boat.spec.name or 'boat'}",
              *((2, f"stopped: its state diverged at t = {self.stopped[boat.index]:.3f} s")
                if boat.index in self.stopped else (r.level, r.message)),
-             (*r.values, ("commands_received", str(intake.received)),
-              ("messages_refused", str(sum(self.refused.values()))),
+             (*r.values, ("commands_received", str(intake.received)), refused,
               ("commands_ignored_not_finite", str(intake.ignored)),
               ("commands_clamped", str(intake.clamped))))
             for boat, intake, r in zip(self.boats, self.intake.boats, reports, strict=True)]

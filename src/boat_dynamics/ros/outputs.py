@@ -10,10 +10,12 @@ due at a step and gives the values; nothing here steps or reads the physics.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 
 import numpy as np
 from boat_msgs.msg import FleetState as FleetStateMsg
+from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
@@ -34,7 +36,7 @@ from boat_msgs_py.cdr import (
     wrench_template,
 )
 from boat_msgs_py.qos import DIAGNOSTICS_QOS, STATE_QOS
-from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
+from boat_msgs_py.tap import SUBSCRIBER_CHECK_PERIOD, GraphWatch, Tap, TappedPublisher
 
 __all__ = ["FleetPublisher", "StartInterrupted"]
 
@@ -74,6 +76,12 @@ class FleetPublisher:
         # every boat's message of a kind packed in one pass
         self._fleet = {key: FleetTemplate([t[key] for t in templates])
                        for key in ("odom", "pose", "twist", "wrench")}
+        self._odom = [p["odom"] for p in self.pubs]
+        # the optional topics: who wants them asked for the fleet at once
+        self._topics = {key: _FleetTopic([(i, p[key]) for i, p in enumerate(self.pubs)
+                                          if key in p])
+                        for key in ("pose", "twist", *names.WRENCH_SOURCES,
+                                    names.CARRIAGE_WRENCH)}
         self._state_pub, self._state = None, None  # every boat in one message
         if sim.fleet_state:
             self._state_pub = TappedPublisher(node, FleetStateMsg, names.FLEET_STATE,
@@ -94,9 +102,9 @@ class FleetPublisher:
             now: s, time.monotonic().
             publish_tf: publish /tf too.
         """
-        for pubs, data in zip(self.pubs, self._fleet["odom"].pack(sec, nanosec, values),
-                              strict=True):
-            pubs["odom"].publish(data)  # always
+        for pub, data in zip(self._odom, self._fleet["odom"].pack(sec, nanosec, values),
+                             strict=True):
+            pub.publish(data)  # always
         if self._state_pub is not None:
             self._state_pub.publish(self._state.pack(sec, nanosec, values[:, :7],
                                                      values[:, 7:]))
@@ -123,25 +131,26 @@ class FleetPublisher:
                                  np.concatenate([wrench.force, wrench.torque], axis=1), now)
         if carriage is None:
             return
-        wanted = [i for i, p in enumerate(self.pubs)
-                  if names.CARRIAGE_WRENCH in p and p[names.CARRIAGE_WRENCH].wanted(now)]
+        wanted = self._topics[names.CARRIAGE_WRENCH].wanted(now)
         if wanted:
             values = np.zeros((len(self.pubs), 6))
-            for i in wanted:
+            for i, _ in wanted:
                 values[i] = carriage(i)
             packed = self._fleet["wrench"].pack(sec, nanosec, values)
-            for i in wanted:
-                self.pubs[i][names.CARRIAGE_WRENCH].publish(packed[i])
+            for i, pub in wanted:
+                pub.publish(packed[i])
 
     def diagnostics(self, sec: int, nanosec: int, statuses: Sequence[Status]) -> None:
         """/diagnostics: one status per boat."""
         self._diag_pub.publish(diagnostic_array_cdr(sec, nanosec, statuses))
 
-    def sensor_readings(self, due: Callable[[float], bool], stamp, center_of_mass: np.ndarray,
-                        before: FleetState, after: FleetState) -> None:
-        """Every sensor whose rate is ``due`` (:meth:`SensorPublisher.publish_due`)."""
+    def sensor_readings(self, due: Callable[[float], bool], sec: int, nanosec: int,
+                        center_of_mass: np.ndarray, before: FleetState,
+                        after: FleetState) -> None:
+        """Every sensor whose rate is ``due`` (:meth:`SensorPublisher.publish_due`), stamped."""
         if len(self.sensors):
-            self.sensors.publish_due(due, stamp, center_of_mass, before, after)
+            self.sensors.publish_due(due, Time(sec=sec, nanosec=nanosec), center_of_mass,
+                                     before, after)
 
     def _publish_wanted(self, topic_key: str, template_key: str, sec: int, nanosec: int,
                         values: np.ndarray, now: float) -> None:
@@ -155,11 +164,40 @@ class FleetPublisher:
             values: (B, F) float64 fields of every boat.
             now: s, time.monotonic().
         """
-        wanted = [i for i, p in enumerate(self.pubs) if p[topic_key].wanted(now)]
+        wanted = self._topics[topic_key].wanted(now)
         if wanted:
             packed = self._fleet[template_key].pack(sec, nanosec, values)
-            for i in wanted:
-                self.pubs[i][topic_key].publish(packed[i])
+            for i, pub in wanted:
+                pub.publish(packed[i])
+
+
+class _FleetTopic:
+    """One optional topic of every boat that has it, and which of them want a message now.
+
+    Whether a boat's publisher wants one (:meth:`TappedPublisher.wanted`) is asked for the
+    whole fleet at once, at most every :data:`SUBSCRIBER_CHECK_PERIOD` s: a publisher asks
+    its subscriber count, and a graph watch the graph, that often anyway, so the answers are
+    the same; a step in between costs no call per boat.
+
+    Args:
+        pubs: (boat index, its publisher of the topic), in fleet order.
+    """
+
+    def __init__(self, pubs: list[tuple[int, TappedPublisher]]) -> None:
+        self._pubs = pubs
+        self._wanted: list[tuple[int, TappedPublisher]] = []
+        self._next_check = -math.inf
+
+    def wanted(self, now: float) -> list[tuple[int, TappedPublisher]]:
+        """(boat index, publisher) of the boats whose message is worth building.
+
+        Args:
+            now: s, the wall clock (time.monotonic()).
+        """
+        if now >= self._next_check:
+            self._wanted = [(i, pub) for i, pub in self._pubs if pub.wanted(now)]
+            self._next_check = now + SUBSCRIBER_CHECK_PERIOD
+        return self._wanted
 
 
 def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None,
