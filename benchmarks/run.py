@@ -220,17 +220,25 @@ def bench_run(seconds: float, boats: int) -> None:
 
 
 def phase_patches() -> list[tuple[object, str, str]]:
-    """(owner, attribute, label) of every phase :func:`bench_phases` times (tests check them)."""
+    """(owner, attribute, label) of every phase :func:`bench_phases` times (tests check them).
+
+    The parts of a phase follow it, their labels indented.
+    """
     from boat_dynamics.ros import node as node_module
     from boat_dynamics.ros import outputs
     from boat_dynamics.ros import runner as simulation
 
     return [
         (pipeline, "step", "physics (pipeline.step)"),
-        (node_module, "fleet_reports", "/diagnostics reports"),
-        (outputs.FleetPublisher, "states", "odom, pose, twist"),
-        (outputs.FleetPublisher, "wrenches", "wrench/*"),
         (node_module.DynamicsNode, "publish_outputs", "all publishing"),
+        (node_module.DynamicsNode, "_state_values", "  state values (B, 13)"),
+        (outputs.FleetPublisher, "states", "  odom, pose, twist"),
+        (outputs.FleetPublisher, "sensor_readings", "  sensors"),
+        (outputs.FleetPublisher, "wrenches", "  wrench/*"),
+        # the surface contact of the state reached, which the next step takes (no extra cost)
+        (node_module, "contact", "  /diagnostics contact"),
+        (node_module, "fleet_reports", "  /diagnostics reports"),
+        (outputs.FleetPublisher, "diagnostics", "  /diagnostics packed"),
         (simulation.OceanNode, "advance", "/ocean/surface"),
         (simulation, "spin_pending", "ROS callbacks (spin)"),
     ]
@@ -240,7 +248,8 @@ def bench_phases(seconds: float, boats: int) -> None:
     """Where a step of `run --fast` goes: wall time per step of each phase (timed by wrappers).
 
     The wrappers cost about a microsecond per call; the figures are for finding the next thing
-    to speed up, the real-time factor above is the figure that counts.
+    to speed up, the real-time factor above is the figure that counts. A phase with parts
+    (indented below it) has the rest of its time on a line of its own (/clock, stamps, calls).
     """
     import io
 
@@ -262,18 +271,38 @@ def bench_phases(seconds: float, boats: int) -> None:
         setattr(owner, name, wrapper)
         return original
 
-    originals = [(owner, name, timed(owner, name, label))
-                 for owner, name, label in phase_patches()]
+    patches = phase_patches()
+    originals = [(owner, name, timed(owner, name, label)) for owner, name, label in patches]
     try:
         run_options = simulation.RunOptions(fast=True, duration=seconds)
         simulation.run(parse_scenario(_fleet(boats)), run_options, status=io.StringIO())
     finally:
         for owner, name, original in originals:
             setattr(owner, name, original)
-    steps = seconds * 100.0
     print(f"  {boats} boats, {seconds:g} s: wall time per 10 ms step")
-    for label, total in spent.items():
-        print(f"    {label:<24} {total / steps * 1e6:8.1f} us")
+    for label, per_step in _phase_lines([label for _, _, label in patches], spent,
+                                        seconds * 100.0):
+        print(f"    {label:<26} {per_step:8.1f} us")
+
+
+def _phase_lines(labels: list[str], spent: dict[str, float],
+                 steps: float) -> list[tuple[str, float]]:
+    """(label, us per step) of each timed phase, in ``labels``' order.
+
+    After the parts of a phase (the indented labels that follow it) comes the rest of it.
+    """
+    lines: list[tuple[str, float]] = []
+    whole, parts = None, 0.0  # the last phase that is not a part, the sum of its parts
+    for label in [*labels, None]:
+        if label is not None and label.startswith(" "):
+            parts += spent.get(label, 0.0)
+        else:
+            if whole in spent and parts:
+                lines.append(("  rest", (spent[whole] - parts) / steps * 1e6))
+            whole, parts = label, 0.0
+        if label in spent:
+            lines.append((label, spent[label] / steps * 1e6))
+    return lines
 
 
 def _fleet_file(boats: int, model: str, folder: Path) -> Path:
