@@ -77,6 +77,9 @@ class FleetPublisher:
         self._fleet = {key: FleetTemplate([t[key] for t in templates])
                        for key in ("odom", "pose", "twist", "wrench")}
         self._odom = [p["odom"] for p in self.pubs]
+        # every boat's wrench/<source> of every source, source after source, in one pass
+        self._wrenches = FleetTemplate([t["wrench"] for _ in names.WRENCH_SOURCES
+                                        for t in templates])
         # the optional topics: who wants them asked for the fleet at once
         self._topics = {key: _FleetTopic([(i, p[key]) for i, p in enumerate(self.pubs)
                                           if key in p])
@@ -125,12 +128,22 @@ class FleetPublisher:
             carriage: boat index -> (6,) its carriage's force (N) and moment (N m), body frame,
                 or None: no carriage has acted yet.
         """
-        for source in names.WRENCH_SOURCES:
-            wrench = getattr(forces, source)
-            self._publish_wanted(source, "wrench", sec, nanosec,
-                                 np.concatenate([wrench.force, wrench.torque], axis=1), now)
-        if carriage is None:
-            return
+        wanted = [(k, pubs) for k, source in enumerate(names.WRENCH_SOURCES)
+                  if (pubs := self._topics[source].wanted(now))]
+        if wanted:  # every source packed at once: row k B + i is source k of boat i
+            every = [getattr(forces, source) for source in names.WRENCH_SOURCES]
+            values = np.concatenate([np.stack([w.force for w in every]),
+                                     np.stack([w.torque for w in every])], axis=2)
+            packed = self._wrenches.pack(sec, nanosec, values.reshape(-1, 6))
+            for k, pubs in wanted:
+                for i, pub in pubs:
+                    pub.publish(packed[k * len(self.pubs) + i])
+        if carriage is not None:
+            self._carriage_wrenches(sec, nanosec, now, carriage)
+
+    def _carriage_wrenches(self, sec: int, nanosec: int, now: float,
+                           carriage: Callable[[int], np.ndarray]) -> None:
+        """wrench/carriage of every towed boat that wants it (see :meth:`wrenches`)."""
         wanted = self._topics[names.CARRIAGE_WRENCH].wanted(now)
         if wanted:
             values = np.zeros((len(self.pubs), 6))
