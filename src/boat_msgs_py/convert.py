@@ -32,6 +32,7 @@ from ocean_sim.physics.environment import Environment, Wind
 from ocean_sim.physics.waves import MAX_COMPONENTS, InvalidSeaStateError, WaveComponent, WaveField
 
 __all__ = [
+    "UNMEASURED_VARIANCE",
     "diagnostic_array",
     "environment_from_msg",
     "environment_to_msg",
@@ -197,16 +198,25 @@ def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading) -> NavSatFix:
         position_covariance_type=NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN)
 
 
-def gnss_velocity(stamp: Time, frame: str, reading: GnssReading) -> TwistWithCovarianceStamped:
-    """geometry_msgs/TwistWithCovarianceStamped: the antenna's ENU velocity.
+#: (rad/s)^2, the covariance diagonal of the angular velocity a GNSS receiver does not
+#: measure: geometry_msgs/TwistWithCovariance has no "unknown" flag (sensor_msgs/Imu's -1 is
+#: not its convention, and makes the matrix indefinite), so a variance far beyond any boat's
+#: turn rate (a standard deviation of 1000 rad/s), which a filter fusing it learns nothing from.
+UNMEASURED_VARIANCE = 1e6
 
-    Linear only; the angular part is unknown: -1 on its covariance diagonal, as drivers do.
+
+def gnss_velocity(stamp: Time, reading: GnssReading) -> TwistWithCovarianceStamped:
+    """geometry_msgs/TwistWithCovarianceStamped: the antenna's velocity in the world (ENU) frame.
+
+    The header names the frame the twist is expressed in (``world``, as tf2 and
+    robot_localization read it), not the antenna's link. Linear only; the angular part is not
+    measured: :data:`UNMEASURED_VARIANCE` on its covariance diagonal.
     """
-    msg = TwistWithCovarianceStamped(header=_header(stamp, frame))
+    msg = TwistWithCovarianceStamped(header=_header(stamp, WORLD_FRAME))
     msg.twist.twist.linear = _vec(reading.velocity)
     cov = np.zeros((6, 6))
     cov[:3, :3] = reading.velocity_covariance
-    cov[3, 3] = cov[4, 4] = cov[5, 5] = -1.0
+    cov[3, 3] = cov[4, 4] = cov[5, 5] = UNMEASURED_VARIANCE
     msg.twist.covariance = [float(x) for x in cov.reshape(36)]
     return msg
 

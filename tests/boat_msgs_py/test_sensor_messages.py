@@ -10,7 +10,14 @@ import tf2_msgs
 from rosbags.typesys import Stores, get_typestore
 
 from boat_dynamics.physics.sensors import GnssReading, ImuReading
-from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, seconds_to_time, tf_message
+from boat_msgs_py.convert import (
+    UNMEASURED_VARIANCE,
+    gnss_velocity,
+    imu,
+    nav_sat_fix,
+    seconds_to_time,
+    tf_message,
+)
 
 
 @pytest.mark.parametrize("name", ["TFMessage", "TF2Error"])
@@ -45,9 +52,11 @@ def test_transforms_imu_and_fix_carry_the_readings():
     assert (f.latitude, f.longitude, f.altitude) == pytest.approx((45.0, -4.0, 12.0))
     assert f.status.status == 0 and f.position_covariance_type == 2  # FIX, DIAGONAL_KNOWN
     assert list(f.position_covariance)[::4] == [1.0, 2.0, 3.0]
-    v = gnss_velocity(stamp, "alpha/gnss_link", fix)
+    v = gnss_velocity(stamp, fix)
     assert (v.twist.twist.linear.x, v.twist.twist.linear.y) == (1.0, -2.0)
-    assert list(v.twist.covariance)[::7] == [0.01, 0.01, 0.01, -1.0, -1.0, -1.0]
+    assert v.header.frame_id == "world"  # the frame the ENU twist is in, not the antenna's
+    assert list(v.twist.covariance)[::7] == [0.01, 0.01, 0.01] + [UNMEASURED_VARIANCE] * 3
+    assert np.linalg.eigvalsh(np.reshape(v.twist.covariance, (6, 6))).min() >= 0.0
 
 
 def test_thruster_topics_are_commands_a_replay_republishes():

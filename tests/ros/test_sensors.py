@@ -97,6 +97,19 @@ def test_tf_is_the_odometry_and_tf_static_mounts_every_sensor(boatsim, tmp_path)
         np.testing.assert_allclose(np.diag(np.reshape(fix.position_covariance, (3, 3))),
                                    [1.0, 1.0, 4.0])
     assert len(errors) == 20  # 5 Hz from the first step: t = 0.2 .. 4.0 s
+    # the GNSS velocity: the antenna's, in the frame its header names (world, ENU), with a
+    # covariance a filter can use: the normalised errors squared average 3 (chi-squared, 3
+    # dof; 20 fixes: 60 dof, whose mean lies in 1.5-5.2 with 99.9 %: Wilson-Hilferty)
+    nees = []
+    for stamp, vel in msgs["/alpha/gnss/vel"]:
+        assert vel.header.frame_id == "world"
+        cov = np.reshape(vel.twist.covariance, (6, 6))
+        assert np.linalg.eigvalsh(cov).min() >= 0.0
+        pose, twist = odom[stamp].pose.pose, odom[stamp].twist.twist
+        body = _vec(twist.linear) + np.cross(_vec(twist.angular), [-1.0, 0.0, 1.0])
+        error = _vec(vel.twist.twist.linear) - rotation_matrix(_quat(pose.orientation)) @ body
+        nees.append(error @ np.linalg.solve(cov[:3, :3], error))
+    assert len(nees) == 20 and 1.5 < np.mean(nees) < 5.2, nees
     # the noisy odometry: odom's pose within its noise, the covariance from its sigma
     noisy = msgs["/alpha/odom_noisy"]
     assert len(noisy) == 40 and noisy[0][1].child_frame_id == "alpha/base_link"

@@ -197,7 +197,7 @@ class SensorPublisher:
         reading, sensor.state = measure_gnss(spec, sensor.key, sensor.state, self._sim.datum,
                                              antenna, velocity)
         sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading))
-        sensor.pubs[1].publish(gnss_velocity(stamp, sensor.frame, reading))
+        sensor.pubs[1].publish(gnss_velocity(stamp, reading))
 
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState) -> None:
         rot = rotation_matrix(after.orientation)
