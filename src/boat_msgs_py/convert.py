@@ -27,6 +27,7 @@ from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.sensors import GnssReading, ImuReading, OdometryReading
+from boat_msgs_py.cdr import stamp_parts
 from boat_msgs_py.names import WORLD_FRAME
 from ocean_sim.physics.environment import Environment, Wind
 from ocean_sim.physics.waves import MAX_COMPONENTS, InvalidSeaStateError, WaveComponent, WaveField
@@ -54,10 +55,13 @@ __all__ = [
 ]
 
 
-def seconds_to_time(seconds: float) -> Time:
-    """builtin_interfaces/Time from float seconds (>= 0), rounded to the nanosecond."""
-    ns = round(seconds * 1e9)
-    return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+def seconds_to_time(seconds: float, epoch: float = 0.0) -> Time:
+    """builtin_interfaces/Time at ``seconds`` after ``epoch`` (s, >= 0), to the nanosecond.
+
+    Each rounded to the ns on its own (:func:`boat_msgs_py.cdr.stamp_parts`).
+    """
+    sec, nanosec = stamp_parts(seconds, epoch)
+    return Time(sec=sec, nanosec=nanosec)
 
 
 def time_to_seconds(stamp: Time) -> float:

@@ -34,7 +34,7 @@ from std_msgs.msg import Float64MultiArray, UInt64, UInt64MultiArray
 
 from boat_dynamics.ros.node import SimClock
 from boat_msgs_py import names
-from boat_msgs_py.cdr import clock_template, stamp_parts, uint64_multi_array_cdr
+from boat_msgs_py.cdr import clock_template, uint64_multi_array_cdr
 from boat_msgs_py.convert import lockstep_grant
 from boat_msgs_py.qos import CLOCK_QOS, COMMAND_QOS, STEP_DONE_QOS, STEP_GRANT_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
@@ -288,7 +288,7 @@ class StepConductor(Node):
 
     def publish_clock(self, tapped: bool = True) -> None:
         """/clock at the owner's simulation time (``tapped``: also into the bag)."""
-        sec, nanosec = stamp_parts(self.clock.epoch + self.clock.t)
+        sec, nanosec = self.clock.stamp()
         data = self._clock_template.pack(sec, nanosec)
         if tapped:
             self._clock_pub.publish(data)

@@ -17,6 +17,7 @@ from typing import Literal
 import numpy as np
 from boat_msgs.msg import Environment as EnvironmentMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
+from builtin_interfaces.msg import Time
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 from rclpy.context import Context
 from rclpy.node import Node
@@ -55,12 +56,10 @@ from boat_dynamics.ros.outputs import FleetPublisher, StartInterrupted
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
     clock_template,
-    stamp_parts,
 )
 from boat_msgs_py.convert import (
     environment_from_msg,
     lockstep_grant,
-    seconds_to_time,
     wave_field_from_msg,
 )
 from boat_msgs_py.qos import (
@@ -99,8 +98,12 @@ class SimClock:
         return self.steps / self.rate_hz
 
     def stamp_ns(self) -> int:
-        """Message / bag timestamp of the current simulation time, ns."""
-        return round((self.epoch + self.t) * 1e9)
+        """Message / bag timestamp of the current simulation time, ns (integer arithmetic)."""
+        return round(self.epoch * 1e9) + round(self.steps * 1e9 / self.rate_hz)
+
+    def stamp(self) -> tuple[int, int]:
+        """(sec, nanosec) of :meth:`stamp_ns`."""
+        return divmod(self.stamp_ns(), 1_000_000_000)
 
 
 @dataclass
@@ -385,8 +388,8 @@ class DynamicsNode(Node):
 
     def start(self) -> None:
         """Publish what is published once, stamped with the clock (its epoch is now known)."""
-        self.outputs.transforms.publish_static(seconds_to_time(self._sim_clock.epoch
-                                                               + self._sim_clock.t))
+        sec, nanosec = self._sim_clock.stamp()
+        self.outputs.transforms.publish_static(Time(sec=sec, nanosec=nanosec))
 
     # ------------------------------------------------------------------ snapshots
 
@@ -552,7 +555,8 @@ class DynamicsNode(Node):
     def repeat_clock(self) -> None:
         """Republish /clock at the current time (lockstep hold: late joiners see it), unrecorded."""
         if self._clock_pub is not None:
-            stamp = seconds_to_time(self._sim_clock.epoch + self._sim_clock.t)
+            sec, nanosec = self._sim_clock.stamp()
+            stamp = Time(sec=sec, nanosec=nanosec)
             self._clock_pub.publish_untapped(Clock(clock=stamp))
 
     def may_step(self) -> bool:
@@ -670,7 +674,7 @@ class DynamicsNode(Node):
     def publish_outputs(self) -> None:
         """Publish /clock, odometry, sensors, wrenches and diagnostics due at the current step."""
         k = self._sim_clock.steps
-        sec, nanosec = stamp_parts(self._sim_clock.epoch + self._sim_clock.t)
+        sec, nanosec = self._sim_clock.stamp()
         if self._clock_pub is not None:
             self._clock_pub.publish(self._clock_template.pack(sec, nanosec))
         if self._due(k, self._rate, self._publish_rate):

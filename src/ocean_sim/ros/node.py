@@ -344,7 +344,7 @@ class OceanNode(Node):
         surface = sample(self._sea, xy, t)
         points = np.column_stack([xy, surface.heights, surface.normals]).astype(np.float32)
         return PointCloud2(
-            header=Header(stamp=seconds_to_time(self._epoch + t), frame_id=WORLD_FRAME),
+            header=Header(stamp=seconds_to_time(t, self._epoch), frame_id=WORLD_FRAME),
             height=1, width=points.shape[0],
             fields=_CLOUD_FIELDS, is_bigendian=False, point_step=24,
             row_step=24 * points.shape[0], is_dense=True,

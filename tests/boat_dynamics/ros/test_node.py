@@ -1,6 +1,11 @@
 """The dynamics node's policies that need no running node."""
 
-from boat_dynamics.ros.node import advertises_wrenches
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from boat_dynamics.ros.node import SimClock, advertises_wrenches
+from boat_msgs_py.cdr import stamp_parts
 
 
 def test_wrench_topics_are_advertised_up_to_a_hundred_boats_or_when_asked():
@@ -10,3 +15,23 @@ def test_wrench_topics_are_advertised_up_to_a_hundred_boats_or_when_asked():
     assert not advertises_wrenches("on_subscription", 2, False)
     # a recorder process records what it finds on the graph: everything is advertised
     assert advertises_wrenches("on_subscription", 1000, True)
+
+
+@settings(max_examples=200, deadline=None)
+@given(epoch=st.floats(1.6e9, 2.1e9), rate_hz=st.sampled_from([10.0, 50.0, 100.0, 200.0, 400.0]),
+       start=st.integers(0, 10**8))
+def test_stamps_are_integer_nanoseconds_a_step_apart_whatever_the_wall_clock_epoch(
+        epoch, rate_hz, start):
+    """A wall-clock epoch (1.7e9 s) plus the simulation time in one float rounds to 238 ns:
+    the stamps of steps 10 ms apart then differed by 10 ms +-238 ns (issue 30). In integer
+    ns they are exactly a step apart, and the epoch's own ns stay what they were."""
+    clock = SimClock(rate_hz=rate_hz, epoch=epoch, steps=start)
+    stamps = []
+    for _ in range(5):
+        stamps.append(clock.stamp_ns())
+        clock.steps += 1
+    assert set(np.diff(stamps)) == {round(1e9 / rate_hz)}
+    assert stamps[0] == round(epoch * 1e9) + round(start * 1e9 / rate_hz)
+    sec, nanosec = clock.stamp()
+    assert sec * 10**9 + nanosec == clock.stamp_ns() and 0 <= nanosec < 10**9
+    assert stamp_parts(start / rate_hz, epoch) == divmod(stamps[0], 10**9)
