@@ -8,7 +8,8 @@ component's depth decay is Wheeler-stretched (Wheeler 1970): deep water e^{k z_s
 z_s = min(z - eta, 0); depth h: z_s = clip(h (z - eta) / (h + eta), -h, 0), and
 cosh / sinh ratios written with exponentials that do not overflow (Dean & Dalrymple 1991,
 eqs. 4.16-4.17 and 4.23). sin and cos are :mod:`ocean_sim.physics.surface_kernel`'s
-polynomial pair. Pure functions of arrays.
+polynomial pair, evaluated component by component over blocks of points so that they
+vectorize. Pure functions of arrays.
 """
 
 from __future__ import annotations
@@ -32,9 +33,42 @@ def _stretched(z, eta, h, deep):  # pragma: no cover  (compiled)
     return min(max(h * (z - eta) / (h + eta), -h), 0.0)
 
 
+#: Points per block: a block's phases and sums stay in the cache while the components go by.
+_BLOCK = 2048
+
+
+@kernel
+def _pressure_decay(k, zs, h, deep, decay):  # pragma: no cover  (compiled)
+    """One component's pressure decay at the block's z_s: cosh(k (z_s + h)) / cosh(k h)."""
+    for i in range(zs.shape[0]):
+        kz = k * zs[i]
+        decay[i] = math.exp(kz)
+        if not deep:
+            decay[i] = (decay[i] * (1.0 + math.exp(-2.0 * (kz + k * h)))
+                        / (1.0 + math.exp(-2.0 * k * h)))
+
+
+@kernel
+def _decays(k, zs, h, deep, horizontal, vertical):  # pragma: no cover  (compiled)
+    """One component's velocity decays at z_s: cosh and sinh(k (z_s + h)) / sinh(k h)."""
+    for i in range(zs.shape[0]):
+        kz = k * zs[i]
+        grow = math.exp(kz)
+        if deep:
+            horizontal[i] = vertical[i] = grow
+        else:
+            fall = math.exp(-2.0 * (kz + k * h))
+            norm = 1.0 - math.exp(-2.0 * k * h)
+            horizontal[i] = grow * (1.0 + fall) / norm
+            vertical[i] = grow * (1.0 - fall) / norm
+
+
 @kernel
 def pressure_head_f64(xy, z, eta, kd, time_phase, a, k, h, deep):  # pragma: no cover
     """(N,) m: p / (rho g) = sum_i a_i cos(theta_i) E_i(z_s) - z at N points under the surface.
+
+    Component-major in blocks of points, so that the sines and cosines vectorize (the
+    polynomial pair: about 2 ns a point instead of 7 one point at a time).
 
     Args:
         xy: (N, 2) m, the rest positions of the surface particles above the points.
@@ -49,18 +83,22 @@ def pressure_head_f64(xy, z, eta, kd, time_phase, a, k, h, deep):  # pragma: no 
     """
     n, m = xy.shape[0], kd.shape[1]
     out = np.empty(n)
-    for i in range(n):
-        zs = _stretched(z[i], eta[i], h, deep)
-        total = 0.0
+    for lo in range(0, n, _BLOCK):
+        hi = min(lo + _BLOCK, n)
+        x, y = xy[lo:hi, 0].copy(), xy[lo:hi, 1].copy()
+        zs, total, c = np.empty(hi - lo), np.zeros(hi - lo), np.empty(hi - lo)
+        decay = np.empty(hi - lo)
+        for i in range(hi - lo):
+            zs[i] = _stretched(z[lo + i], eta[lo + i], h, deep)
         for j in range(m):
-            _, c = _sincos(xy[i, 0] * kd[0, j] + xy[i, 1] * kd[1, j] + time_phase[j])
-            kz = k[j] * zs
-            decay = math.exp(kz)
-            if not deep:
-                decay = (decay * (1.0 + math.exp(-2.0 * (kz + k[j] * h)))
-                         / (1.0 + math.exp(-2.0 * k[j] * h)))
-            total += c * decay * a[j]
-        out[i] = total - z[i]
+            kx, ky, phase = kd[0, j], kd[1, j], time_phase[j]
+            for i in range(hi - lo):
+                _, c[i] = _sincos(x[i] * kx + y[i] * ky + phase)
+            _pressure_decay(k[j], zs, h, deep, decay)
+            for i in range(hi - lo):
+                total[i] += c[i] * decay[i] * a[j]
+        for i in range(hi - lo):
+            out[lo + i] = total[i] - z[lo + i]
     return out
 
 
@@ -70,7 +108,8 @@ def orbital_velocity_f64(xy, z, eta, kd, time_phase, a_omega, k, dx, dy, h, deep
     """(N, 3) m/s: the water's velocity at N points below the surface, linear theory.
 
     Each component: a omega cos(theta) E_h(z_s) along its direction, a omega sin(theta)
-    E_v(z_s) upward, theta at the point's own horizontal position.
+    E_v(z_s) upward, theta at the point's own horizontal position. Component-major in blocks
+    of points, as :func:`pressure_head_f64`.
 
     Args:
         xy: (N, 2) m, the points' horizontal positions.
@@ -87,21 +126,26 @@ def orbital_velocity_f64(xy, z, eta, kd, time_phase, a_omega, k, dx, dy, h, deep
     """
     n, m = xy.shape[0], kd.shape[1]
     out = np.zeros((n, 3))
-    for i in range(n):
-        zs = _stretched(z[i], eta[i], h, deep)
+    for lo in range(0, n, _BLOCK):
+        hi = min(lo + _BLOCK, n)
+        x, y = xy[lo:hi, 0].copy(), xy[lo:hi, 1].copy()
+        zs, s, c = np.empty(hi - lo), np.empty(hi - lo), np.empty(hi - lo)
+        horizontal, vertical = np.empty(hi - lo), np.empty(hi - lo)
+        u, v, w = np.zeros(hi - lo), np.zeros(hi - lo), np.zeros(hi - lo)
+        for i in range(hi - lo):
+            zs[i] = _stretched(z[lo + i], eta[lo + i], h, deep)
         for j in range(m):
-            s, c = _sincos(xy[i, 0] * kd[0, j] + xy[i, 1] * kd[1, j] + time_phase[j])
-            kz = k[j] * zs
-            horizontal = vertical = math.exp(kz)
-            if not deep:
-                fall = math.exp(-2.0 * (kz + k[j] * h))
-                norm = 1.0 - math.exp(-2.0 * k[j] * h)
-                horizontal = horizontal * (1.0 + fall) / norm
-                vertical = vertical * (1.0 - fall) / norm
-            speed = horizontal * c * a_omega[j]
-            out[i, 0] += speed * dx[j]
-            out[i, 1] += speed * dy[j]
-            out[i, 2] += vertical * s * a_omega[j]
+            kx, ky, phase = kd[0, j], kd[1, j], time_phase[j]
+            for i in range(hi - lo):
+                s[i], c[i] = _sincos(x[i] * kx + y[i] * ky + phase)
+            _decays(k[j], zs, h, deep, horizontal, vertical)
+            for i in range(hi - lo):
+                speed = horizontal[i] * c[i] * a_omega[j]
+                u[i] += speed * dx[j]
+                v[i] += speed * dy[j]
+                w[i] += vertical[i] * s[i] * a_omega[j]
+        for i in range(hi - lo):
+            out[lo + i, 0], out[lo + i, 1], out[lo + i, 2] = u[i], v[i], w[i]
     return out
 
 
