@@ -83,7 +83,7 @@ def _trial(base, kd, qad, c0, c1, theta, s, co):  # pragma: no cover  (compiled)
 
 
 @kernel
-def _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, th, sa, ca
+def _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, sa, ca
                ):  # pragma: no cover  (compiled)
     """Point ``i``, whose Newton step did not shrink |F|: the fixed-point step instead.
 
@@ -107,7 +107,7 @@ def _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, th, sa, ca
                 break
             h *= 0.5
     cand[0, i], cand[1, i], rc[0, i], rc[1, i], ec[i] = f0, f1, g0, g1, e
-    th[:, i], sa[:, i], ca[:, i] = theta, s, c
+    sa[:, i], ca[:, i] = s, c
 
 
 @kernel
@@ -129,25 +129,21 @@ def _newton(base, kd, qad, jac, d, r, err, s, c, active):  # pragma: no cover  (
         step[0, i] = s0 / det[i] if ok else r[0, i]
         step[1, i] = s1 / det[i] if ok else r[1, i]
         cand[0, i], cand[1, i] = d[0, i] - step[0, i], d[1, i] - step[1, i]
-    th, sa, ca = np.empty((m, n)), np.empty((m, n)), np.empty((m, n))
     a0, a1 = np.zeros(n), np.zeros(n)
-    for j in range(m):
+    for j in range(m):  # the candidates' sines and cosines, kept by the active points
         for i in range(n):
-            th[j, i] = base[j, i] + cand[0, i] * kd[0, j] + cand[1, i] * kd[1, j]
-            sa[j, i], ca[j, i] = _sincos(th[j, i])
-            a0[i] += sa[j, i] * qad[j, 0]
-            a1[i] += sa[j, i] * qad[j, 1]
+            sv, cv = _sincos(base[j, i] + cand[0, i] * kd[0, j] + cand[1, i] * kd[1, j])
+            a0[i] += sv * qad[j, 0]
+            a1[i] += sv * qad[j, 1]
+            s[j, i] = sv if active[i] else s[j, i]
+            c[j, i] = cv if active[i] else c[j, i]
     rc, ec = np.empty((2, n)), np.empty(n)
     for i in range(n):
         rc[0, i], rc[1, i] = cand[0, i] - a0[i], cand[1, i] - a1[i]
         ec[i] = math.sqrt(rc[0, i] * rc[0, i] + rc[1, i] * rc[1, i])
     for i in range(n):
         if active[i] and ec[i] >= err[i]:
-            _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, th, sa, ca)
-    for j in range(m):
-        for i in range(n):
-            s[j, i] = sa[j, i] if active[i] else s[j, i]
-            c[j, i] = ca[j, i] if active[i] else c[j, i]
+            _fall_back(i, base, kd, qad, d, r, det, step, cand, rc, ec, s, c)
     for i in range(n):
         if active[i]:
             d[0, i], d[1, i], r[0, i], r[1, i], err[i] = cand[0, i], cand[1, i], rc[0, i], \
