@@ -166,7 +166,7 @@ def _add_run(verbs) -> None:
     run.add_argument("scenario", nargs="?", metavar="SCENARIO",
                      help="scenario YAML file (default: scenarios/default.yaml)")
     run.add_argument("--fast", action="store_true",
-                     help="run as fast as the machine allows and publish /clock")
+                     help="run as fast as the machine allows (not paced to the wall clock)")
     run.add_argument("--duration", type=_positive_seconds, metavar="S",
                      help="stop after S seconds of simulated time")
     run.add_argument("--record", metavar="DIR",

@@ -257,6 +257,31 @@ def test_fast_run_with_duration_records_every_message(boatsim, tmp_path):
     assert stamp == 20_000_000_000 == odom.header.stamp.sec * 10**9 + odom.header.stamp.nanosec
 
 
+def test_a_real_time_run_publishes_clock_every_step_and_stamps_on_it(boatsim, tmp_path):
+    """In real time /clock is the simulation's time every step, as with --fast, so that a run
+    that cannot keep up (4 kHz physics: slower than real time on a laptop) and stamps its
+    messages with the simulation's time, behind the wall clock, can be followed by a node with
+    use_sim_time (issue 30: with no /clock, a client's stamps fell 3 s behind in 47 s)."""
+    from rosbags.highlevel import AnyReader
+
+    scenario = tmp_path / "heavy.yaml"
+    scenario.write_text(yaml.safe_dump({"simulation": {"rate_hz": 4000.0}}))
+    bag = tmp_path / "bag"
+    sim = boatsim("run", str(scenario), "--duration", "0.5", "--record", str(bag))
+    assert sim.wait(timeout=120) == 0, sim.output()
+    stamps: dict[str, list[int]] = {"/clock": [], "/odom": []}
+    with AnyReader([bag]) as reader:
+        for conn, _, raw in reader.messages(
+                connections=[c for c in reader.connections if c.topic in stamps]):
+            msg = reader.deserialize(raw, conn.msgtype)
+            t = msg.clock if conn.topic == "/clock" else msg.header.stamp
+            stamps[conn.topic].append(t.sec * 10**9 + t.nanosec)
+    clock = stamps["/clock"]
+    assert len(clock) == 2001  # steps 0 .. 2,000 of 0.5 s at 4 kHz
+    assert set(np.diff(clock)) == {250_000}  # 0.25 ms apart, to the nanosecond
+    assert len(stamps["/odom"]) == 26 and set(stamps["/odom"]) <= set(clock)  # 50 Hz
+
+
 def test_ctrl_c_stops_cleanly_and_finalizes_the_bag(boatsim, probe, tmp_path):
     from rosbags.highlevel import AnyReader
 

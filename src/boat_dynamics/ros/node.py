@@ -170,7 +170,9 @@ class DynamicsNode(Node):
         scenario: the scenario, its boats initialized
             (:func:`boat_dynamics.physics.core.pipeline.init_scenario`).
         clock: the shared simulation clock (advanced by this node).
-        publish_clock: publish /clock (the simulation owns time: --fast).
+        publish_clock: publish /clock at every step: the simulation's time (a run's one
+            dynamics process, in --fast and in real time, where a run that falls behind the
+            wall clock is followed by nodes with use_sim_time).
         tap: also hand every published message to this (recording), or None.
         name: the node name (``boat_dynamics``; one per boat with ``--processes``).
         deferred: publish nothing stamped before :meth:`start` (``--processes`` start-up,

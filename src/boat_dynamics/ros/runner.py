@@ -2,7 +2,7 @@
 
 The loop takes one physics step, publishes what is due, then serves ROS callbacks (commands,
 parameter changes) until the next step is due: paced to the wall clock in real time, or with
-no waiting at all in ``--fast`` mode, where the simulation publishes /clock.
+no waiting at all in ``--fast`` mode. The simulation publishes /clock either way.
 
 /ocean/sample_surface is served by a surface server process beside this one
 (:mod:`ocean_sim.ros.surface_server`): a large request served here held the loop for up to
@@ -140,7 +140,7 @@ class RunOptions:
     """How the user asked to run a scenario (``boatsim run``'s options), and which process.
 
     Attributes:
-        fast: run as fast as possible and publish /clock (else paced to real time).
+        fast: run as fast as possible (else paced to real time); /clock either way.
         duration: s of simulated time, None = until stopped.
         record: directory of a rosbag2 (MCAP) bag to write, or None.
         lockstep: with ``fast``: step only as far as a replayer (``boatsim replay``) grants.
@@ -185,7 +185,7 @@ class Lag:
             return suffix, "warning", (
                 f"running behind real time by {lag:.1f} s (x{rtf:.2f} so far): it steps as fast "
                 f"as it can to catch up, its stamps are the simulation's; fewer boats, a lower "
-                f"rate_hz, or --fast (simulation time on /clock) avoid it")
+                f"rate_hz, or --fast avoid it; nodes with use_sim_time follow its /clock")
         if lag < self.CAUGHT_UP and self.behind:
             self.behind = False
             return suffix, "info", "caught up with real time"
@@ -449,7 +449,7 @@ class _Loop:
             self._make_ocean(tap, deferred)
         if options.process.role in ("all", "shard"):
             self.dynamics = DynamicsNode(scenario, clock,
-                                         publish_clock=fast and not options.process.shard,
+                                         publish_clock=not options.process.shard,
                                          tap=tap, name=_dynamics_name(scenario, options),
                                          deferred=deferred or options.process.resume is not None,
                                          stopped=self.stop.is_set,
