@@ -99,7 +99,7 @@ class SimClock:
 
     def stamp_ns(self) -> int:
         """Message / bag timestamp of the current simulation time, ns (integer arithmetic)."""
-        return round(self.epoch * 1e9) + round(self.steps * 1e9 / self.rate_hz)
+        return round(self.epoch * 1e9) + round(self.t * 1e9)  # as the ocean's stamps
 
     def stamp(self) -> tuple[int, int]:
         """(sec, nanosec) of :meth:`stamp_ns`."""
