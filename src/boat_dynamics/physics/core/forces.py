@@ -18,7 +18,7 @@ from boat_dynamics.physics.core.system import FleetForces, FleetInputs, FleetSta
 from boat_dynamics.physics.force_models.buoyancy import sample_point_group
 from boat_dynamics.physics.force_models.damping import damping, radiation_damping
 from boat_dynamics.physics.force_models.hull_drag import hull_drag_in_motion
-from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy, pressure_wrenches
+from boat_dynamics.physics.force_models.mesh_buoyancy import pressure_wrenches
 from boat_dynamics.physics.force_models.mooring import mooring_wrench
 from boat_dynamics.physics.force_models.propulsion import thrusters_wrench
 from boat_dynamics.physics.force_models.rudder import rudder_wrench
@@ -155,20 +155,14 @@ def _excitation(system: System, state: FleetState, contact: Contact
     """
     force, torque = np.zeros((system.count, 3)), np.zeros((system.count, 3))
     fk_force, fk_torque, linear = np.zeros((system.count, 3)), np.zeros((system.count, 3)), False
-    batches: dict[tuple[int, float, bool], list[int]] = {}
-    for i in system.diffracting:
-        p = system.params[i]
-        flat = isinstance(p.buoyancy, MeshBuoyancy) and p.buoyancy.pressure == "linear"
-        batches.setdefault((id(p.hydro), p.min_wavelength, flat), []).append(i)
-    for (_, _, flat), members in batches.items():
-        idx = np.array(members, dtype=np.intp)
-        first = system.params[members[0]]
+    for batch in system.excitation:
+        idx = batch.index
         rot = contact.rotation[idx]
         ref = state.position[idx] - np.einsum("bij,bj->bi", rot, system.center_of_mass[idx])
-        args = (first.hydro, contact.sea.filtered(first.min_wavelength), ref[:, :2],
+        args = (batch.hydro, contact.sea.filtered(batch.min_wavelength), ref[:, :2],
                 np.arctan2(rot[:, 1, 0], rot[:, 0, 0]), state.t)
         moving = np.einsum("bij,bj->bi", rot, state.velocity[idx])[:, :2]  # over ground
-        if flat:
+        if batch.linear:
             scattered, incident = excitation_wrench(*args, "both", moving)
             force[idx], torque[idx] = scattered[:, :3], scattered[:, 3:]
             fk_force[idx], fk_torque[idx] = incident[:, :3], incident[:, 3:]

@@ -35,11 +35,12 @@ from boat_dynamics.physics.force_models.mooring import Mooring
 from boat_dynamics.physics.force_models.propulsion import MAX_THRUSTERS, Propulsion
 from boat_dynamics.physics.force_models.rudder import Rudder
 from boat_dynamics.physics.potential_flow.hull_lift import HullLift
+from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.potential_flow.radiation import MAX_ORDER, RadiationMemory
 from ocean_sim.physics.waves import Precision
 
-__all__ = ["DIVERGED_RATE", "DIVERGED_SPEED", "FleetForces", "FleetInputs", "FleetState",
-           "Group", "System"]
+__all__ = ["DIVERGED_RATE", "DIVERGED_SPEED", "ExcitationBatch", "FleetForces", "FleetInputs",
+           "FleetState", "Group", "System"]
 
 #: m/s and rad/s beyond which a boat's state has diverged (:meth:`FleetState.diverged`).
 DIVERGED_SPEED = 1000.0
@@ -363,6 +364,8 @@ class System:
         keel_rate: (B,) 1/s.
         special: the boats not in ``dynamic`` control mode.
         diffracting: the boats with potential-flow coefficients (a diffraction force).
+        excitation: those boats in batches evaluated in one call each: boats sharing a
+            coefficient set, a wave filter and a pressure model (:class:`ExcitationBatch`).
         coupled: the boats with a 6 x 6 added mass (``added_mass_matrix``), integrated with
             :func:`boat_dynamics.physics.body.rigid_body.integrate_coupled`.
         mass_matrix_inverse: (C, 6, 6) (M_RB + A)^-1 of the ``coupled`` boats, or None.
@@ -403,6 +406,7 @@ class System:
     keel_rate: np.ndarray
     special: tuple[int, ...]
     diffracting: tuple[int, ...]
+    excitation: tuple[ExcitationBatch, ...] = ()
     coupled: tuple[int, ...] = ()
     mass_matrix_inverse: np.ndarray | None = None
     added_mass_matrix: np.ndarray | None = None
@@ -445,12 +449,43 @@ class System:
             keel_rate=np.array([p.keel_rate for p in ps]),
             special=tuple(i for i, p in enumerate(ps) if p.control.mode != "dynamic"),
             diffracting=tuple(i for i, p in enumerate(ps) if p.hydro is not None),
+            excitation=_excitation_batches(ps),
             **_coupling(ps),
             mooring=_moorings(ps),
             **_windages(ps),
             towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
             lift=_lifts(ps),
         )
+
+
+@dataclass(frozen=True)
+class ExcitationBatch:
+    """Boats whose wave excitation is evaluated in one call (:attr:`System.excitation`).
+
+    Attributes:
+        index: (K,) int, the boats' places in the fleet.
+        hydro: their shared coefficients.
+        min_wavelength: m, their wave filter.
+        linear: their pressure is ``linear`` (the incident waves' Froude-Krylov force comes
+            from the coefficients too).
+    """
+
+    index: np.ndarray
+    hydro: HydroCoefficients
+    min_wavelength: float
+    linear: bool
+
+
+def _excitation_batches(ps: Sequence[BoatParams]) -> tuple[ExcitationBatch, ...]:
+    """The boats with coefficients, batched by coefficient set, wave filter and pressure."""
+    batches: dict[tuple[int, float, bool], list[int]] = {}
+    for i, p in enumerate(ps):
+        if p.hydro is not None:
+            linear = isinstance(p.buoyancy, MeshBuoyancy) and p.buoyancy.pressure == "linear"
+            batches.setdefault((id(p.hydro), p.min_wavelength, linear), []).append(i)
+    return tuple(ExcitationBatch(np.array(members, dtype=np.intp), ps[members[0]].hydro,
+                                 ps[members[0]].min_wavelength, linear)
+                 for (_, _, linear), members in batches.items())
 
 
 def _lifts(ps: Sequence[BoatParams]) -> HullLift | None:
