@@ -109,6 +109,8 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
 
 
 _TRIAD_KEYS = ("noise_density", "random_walk", "bias_instability", "bias_correlation_time")
+#: A triad's turn-on errors and range (:class:`InertialNoise`), beside its noise.
+_UNIT_KEYS = ("scale_factor", "misalignment_deg", "range")
 
 
 def _imu(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
@@ -126,7 +128,7 @@ def _imu(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
 def _triad(raw: Any, key: str, default: InertialNoise, unit: str) -> InertialNoise:
     """One triad's noise; ``unit`` is its measurement's (rad/s or m/s^2)."""
     d = mapping(raw, key)
-    only(d, key, _TRIAD_KEYS)
+    only(d, key, _TRIAD_KEYS + _UNIT_KEYS)
     units = (f"{unit}/sqrt(Hz)", f"{unit}/s/sqrt(Hz)", unit, "s")
     values = [number(d, k, key, getattr(default, k), 0.0,
                      1e7 if k == "bias_correlation_time" else 1e3, unit=u)
@@ -134,7 +136,12 @@ def _triad(raw: Any, key: str, default: InertialNoise, unit: str) -> InertialNoi
     if values[3] == 0.0 and values[2] > 0.0:
         raise ScenarioError(f"{key}.bias_correlation_time", 0.0,
                             "must be > 0 s when bias_instability > 0")
-    return InertialNoise(*values)
+    scale = number(d, "scale_factor", key, default.scale_factor, 0.0, 0.5)
+    misalignment = number(d, "misalignment_deg", key, math.degrees(default.misalignment), 0.0,
+                          10.0, unit="deg")
+    largest = number(d, "range", key, default.range, 0.0, math.inf, low_open=True, unit=unit,
+                     allow_inf=True)
+    return InertialNoise(*values, scale, math.radians(misalignment), largest)
 
 
 def _odometry_noise(d: Mapping[str, Any], key: str) -> OdometryNoise:

@@ -21,6 +21,13 @@ ADIS16448-class MEMS unit, as in the RotorS IMU model (Furrer et al. 2016; noise
 gyro 3.39e-4 rad/s/sqrt(Hz), accel 4e-3 m/s^2/sqrt(Hz); random walks 3.88e-5 rad/s^2/sqrt(Hz)
 and 6e-3 m/s^3/sqrt(Hz); correlation times 1000 s and 300 s), with the datasheet's in-run
 bias stability (14.5 deg/h, 0.25 mg).
+
+A triad's own errors, drawn once at turn-on from the sensor's noise stream (a unit's
+calibration residuals; IEEE Std 1293-2018 for accelerometers, Titterton & Weston sec. 8.3):
+a scale-factor error per axis of sigma ``scale_factor`` (a fraction) and a misalignment of
+each axis toward each other of sigma ``misalignment`` (rad), so that it reads
+(I + S + M) x + bias + noise (S diagonal, M off-diagonal; zero by default: an ideal triad);
+then clipped to +-``range`` (saturation; the ADIS16448's +-1000 deg/s and +-18 g by default).
 """
 
 from __future__ import annotations
@@ -38,8 +45,8 @@ from boat_dynamics.physics.body.rigid_body import (
 from boat_dynamics.physics.core.model import BoatState
 from boat_dynamics.physics.sensors.noise import gauss_markov, random_walk, standard_normal
 
-__all__ = ["ImuReading", "ImuSpec", "ImuState", "InertialNoise", "imu_start", "measure_imu",
-           "true_motion"]
+__all__ = ["ACCELEROMETER", "GYROSCOPE", "TURN_ON_SAMPLE", "ImuReading", "ImuSpec", "ImuState",
+           "InertialNoise", "imu_start", "measure_imu", "true_motion", "turn_on_transform"]
 
 
 @dataclass(frozen=True)
@@ -51,16 +58,24 @@ class InertialNoise:
         random_walk: bias random walk, unit/s/sqrt(Hz).
         bias_instability: stationary sigma of the Gauss-Markov bias, unit.
         bias_correlation_time: s, of that bias.
+        scale_factor: 1 sigma of each axis's scale-factor error, a fraction (0.001 = 0.1 %).
+        misalignment: rad, 1 sigma of each axis's misalignment toward each other axis.
+        range: unit, the largest reading in magnitude (readings beyond it are clipped).
     """
 
     noise_density: float
     random_walk: float
     bias_instability: float
     bias_correlation_time: float
+    scale_factor: float = 0.0
+    misalignment: float = 0.0
+    range: float = math.inf
 
 
-GYROSCOPE = InertialNoise(3.39e-4, 3.88e-5, 7.0e-5, 1000.0)
-ACCELEROMETER = InertialNoise(4.0e-3, 6.0e-3, 2.45e-3, 300.0)
+GYROSCOPE = InertialNoise(3.39e-4, 3.88e-5, 7.0e-5, 1000.0, range=math.radians(1000.0))
+ACCELEROMETER = InertialNoise(4.0e-3, 6.0e-3, 2.45e-3, 300.0, range=18.0 * 9.80665)
+#: The noise stream's sample index of the turn-on errors (readings never reach it).
+TURN_ON_SAMPLE = 2**62
 
 
 @dataclass(frozen=True)
@@ -92,11 +107,14 @@ class ImuState:
         sample: readings taken.
         bias: (2, 3) the Gauss-Markov biases, gyroscope (rad/s) and accelerometer (m/s^2).
         walk: (2, 3) the random-walk biases, same units.
+        transform: (2, 3, 3) I + S + M of each triad (its scale factors and misalignments,
+            drawn at turn-on), or None when both triads are ideal.
     """
 
     sample: int
     bias: np.ndarray
     walk: np.ndarray
+    transform: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -141,10 +159,33 @@ def true_motion(center_of_mass: np.ndarray, before: BoatState, after: BoatState,
 
 
 def imu_start(spec: ImuSpec, key: np.ndarray) -> ImuState:
-    """The state before the first reading: Gauss-Markov biases from their stationary law."""
+    """The state before the first reading.
+
+    Gauss-Markov biases from their stationary law, and each triad's scale factors and
+    misalignments (:func:`turn_on_transform`).
+    """
     draws = standard_normal(key, 0, 6).reshape(2, 3)
     sigma = np.array([[spec.gyroscope.bias_instability], [spec.accelerometer.bias_instability]])
-    return ImuState(sample=1, bias=sigma * draws, walk=np.zeros((2, 3)))
+    return ImuState(sample=1, bias=sigma * draws, walk=np.zeros((2, 3)),
+                    transform=turn_on_transform(spec, key))
+
+
+def turn_on_transform(spec: ImuSpec, key: np.ndarray) -> np.ndarray | None:
+    """(2, 3, 3) I + S + M of the gyroscope and the accelerometer, or None when both are ideal.
+
+    S = diag(scale_factor w), M = misalignment w off the diagonal, w N(0, 1) draws at the
+    stream's :data:`TURN_ON_SAMPLE` (the same unit whatever it has read).
+    """
+    triads = (spec.gyroscope, spec.accelerometer)
+    if all(t.scale_factor == 0.0 and t.misalignment == 0.0 for t in triads):
+        return None
+    w = standard_normal(key, TURN_ON_SAMPLE, 18).reshape(2, 3, 3)
+    off = ~np.eye(3, dtype=bool)
+    out = np.empty((2, 3, 3))
+    for i, t in enumerate(triads):
+        out[i] = np.eye(3) + np.diag(t.scale_factor * np.diagonal(w[i]))
+        out[i][off] += t.misalignment * w[i][off]
+    return out
 
 
 def measure_imu(spec: ImuSpec, key: np.ndarray, state: ImuState, orientation: np.ndarray,
@@ -171,11 +212,16 @@ def measure_imu(spec: ImuSpec, key: np.ndarray, state: ImuState, orientation: np
     elapsed = state.sample * dt
     cov = [np.eye(3) * (white[i] ** 2 + t.bias_instability ** 2 + t.random_walk ** 2 * elapsed)
            for i, t in enumerate(triads)]
+    rate, force = angular_velocity, specific_force
+    if state.transform is not None:  # the unit's scale factors and misalignments
+        rate, force = state.transform[0] @ rate, state.transform[1] @ force
     reading = ImuReading(
         orientation=quat_multiply(orientation,
                                   quat_from_rotation_vector(spec.orientation_sigma * w[6])),
-        angular_velocity=angular_velocity + bias[0] + walk[0] + white[0] * w[4],
-        linear_acceleration=specific_force + bias[1] + walk[1] + white[1] * w[5],
+        angular_velocity=np.clip(rate + bias[0] + walk[0] + white[0] * w[4],
+                                 -spec.gyroscope.range, spec.gyroscope.range),
+        linear_acceleration=np.clip(force + bias[1] + walk[1] + white[1] * w[5],
+                                    -spec.accelerometer.range, spec.accelerometer.range),
         orientation_covariance=np.eye(3) * spec.orientation_sigma ** 2,
         angular_velocity_covariance=cov[0], linear_acceleration_covariance=cov[1])
-    return reading, ImuState(state.sample + 1, bias, walk)
+    return reading, ImuState(state.sample + 1, bias, walk, state.transform)

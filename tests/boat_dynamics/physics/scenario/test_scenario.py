@@ -133,6 +133,15 @@ def test_density_derives_mass():
         ({"boats": [{"sensors": [{"type": "imu", "noise": {"accelerometer": {
             "bias_correlation_time": 0}}}]}]},
          "boats[0].sensors[0].noise.accelerometer.bias_correlation_time", "> 0 s"),
+        ({"boats": [{"sensors": [{"type": "imu", "noise": {"gyroscope": {
+            "misalignment_deg": 20}}}]}]},
+         "boats[0].sensors[0].noise.gyroscope.misalignment_deg", "[0, 10] deg"),
+        ({"boats": [{"sensors": [{"type": "imu", "noise": {"accelerometer": {
+            "range": 0}}}]}]},
+         "boats[0].sensors[0].noise.accelerometer.range", "(0, inf] m/s^2"),
+        ({"boats": [{"sensors": [{"type": "imu", "noise": {"accelerometer": {
+            "scale_factor": math.nan}}}]}]},
+         "boats[0].sensors[0].noise.accelerometer.scale_factor", "[0, 0.5]"),
         ({"boats": [{"sensors": [{"type": "gnss", "noise": {"horizontal_sigma": -1}}]}]},
          "boats[0].sensors[0].noise.horizontal_sigma", "[0, 10000] m"),
         ({"boats": [{"sensors": [{"type": "gnss", "noise": {"vertical_sigma": 1,
@@ -335,3 +344,14 @@ def test_a_file_without_boats_gets_a_default_boat_and_a_note_saying_so(tmp_path)
     empty = tmp_path / "empty.yaml"
     empty.write_text("")
     assert load_scenario(empty).notes[0].startswith("the file is empty")
+
+
+def test_an_imu_takes_its_scale_factor_misalignment_and_range():
+    sc = parse_scenario({"boats": [{"sensors": [{"type": "imu", "noise": {
+        "gyroscope": {"scale_factor": 0.001, "misalignment_deg": 0.1, "range": 5.0},
+        "accelerometer": {"range": math.inf}}}]}]})
+    (imu,) = sc.boats[0].sensors
+    assert imu.gyroscope.scale_factor == 0.001
+    assert imu.gyroscope.misalignment == pytest.approx(math.radians(0.1))
+    assert (imu.gyroscope.range, imu.accelerometer.range) == (5.0, math.inf)
+    assert imu.accelerometer.scale_factor == imu.accelerometer.misalignment == 0.0  # ideal

@@ -157,3 +157,48 @@ def test_an_imu_on_a_boat_floating_in_still_water_reads_g_within_its_noise():
     assert np.all(np.abs(np.array(z) - G) < 4.5 * sigma)
     bias = spec.accelerometer.bias_instability
     assert abs(np.mean(z) - G) < 3 * bias + 4 * sigma / math.sqrt(200)
+
+
+def test_scale_factors_and_misalignments_are_drawn_once_per_unit_with_their_sigmas():
+    """Over 400 units (keys), each triad's turn-on transform I + S + M has diagonal errors
+    of sigma scale_factor and off-diagonal terms of sigma misalignment (within 15 %: 1,200
+    and 2,400 draws), and a unit reads (I + S + M) x: the same matrix at every reading."""
+    gyro = InertialNoise(0.0, 0.0, 0.0, 1.0, scale_factor=0.01, misalignment=math.radians(0.5))
+    accel = InertialNoise(0.0, 0.0, 0.0, 1.0, scale_factor=0.002, misalignment=0.0)
+    spec = ImuSpec(gyroscope=gyro, accelerometer=accel, orientation_sigma=0.0)
+    diagonal, off = [], []
+    for unit in range(400):
+        key = stream_key(7, "boat", f"imu{unit}")
+        state = imu_start(spec, key)
+        t = state.transform
+        diagonal.append(np.diagonal(t, axis1=1, axis2=2) - 1.0)
+        off.append(t[:, ~np.eye(3, dtype=bool)])
+        rate, force = np.array([0.3, -0.2, 0.5]), np.array([0.1, 0.2, G])
+        for _ in range(3):  # the same unit, reading after reading
+            reading, state = measure_imu(spec, key, state, np.array([0, 0, 0, 1.0]), rate,
+                                         force)
+            np.testing.assert_allclose(reading.angular_velocity, t[0] @ rate, rtol=1e-15)
+            np.testing.assert_allclose(reading.linear_acceleration, t[1] @ force, rtol=1e-15)
+    diagonal, off = np.array(diagonal), np.array(off)
+    assert diagonal[:, 0].std() == pytest.approx(0.01, rel=0.15)
+    assert diagonal[:, 1].std() == pytest.approx(0.002, rel=0.15)
+    assert off[:, 0].std() == pytest.approx(math.radians(0.5), rel=0.15)
+    assert np.all(off[:, 1] == 0.0)  # no accelerometer misalignment asked
+    assert abs(diagonal.mean()) < 3 * 0.01 / math.sqrt(1200)
+
+
+def test_an_ideal_imu_has_no_turn_on_transform_and_readings_saturate_at_the_range():
+    spec = ImuSpec(gyroscope=InertialNoise(0.0, 0.0, 0.0, 1.0, range=math.radians(300.0)),
+                   accelerometer=InertialNoise(0.0, 0.0, 0.0, 1.0, range=2.0 * G),
+                   orientation_sigma=0.0)
+    key = stream_key(1, "a", "imu")
+    state = imu_start(spec, key)
+    assert state.transform is None  # no scale factor, no misalignment: read as it is
+    spin = np.array([0.0, -9.0, 2.0])  # rad/s: 516 deg/s about y, beyond the 300 deg/s range
+    slam = np.array([0.0, 0.0, 5.0 * G])  # a 5 g slam against a 2 g range
+    reading, _ = measure_imu(spec, key, state, np.array([0, 0, 0, 1.0]), spin, slam)
+    np.testing.assert_allclose(reading.angular_velocity, [0.0, -math.radians(300.0), 2.0])
+    np.testing.assert_allclose(reading.linear_acceleration, [0.0, 0.0, 2.0 * G])
+    # the default unit (ADIS16448-class) saturates at +-1000 deg/s and +-18 g
+    assert ImuSpec().gyroscope.range == pytest.approx(math.radians(1000.0))
+    assert ImuSpec().accelerometer.range == pytest.approx(18 * 9.80665)
