@@ -191,8 +191,19 @@ def imu(stamp: Time, frame: str, reading: ImuReading) -> Imu:
                linear_acceleration_covariance=_cov9(reading.linear_acceleration_covariance))
 
 
-def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading) -> NavSatFix:
-    """sensor_msgs/NavSatFix (degrees, WGS-84; covariance ENU, m^2, diagonal known)."""
+def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading, fix: bool = True) -> NavSatFix:
+    """sensor_msgs/NavSatFix (degrees, WGS-84; covariance ENU, m^2, diagonal known).
+
+    Without a fix (an outage): status ``STATUS_NO_FIX``, the position NaN and its covariance
+    unknown, as receivers' drivers publish it.
+    """
+    if not fix:
+        return NavSatFix(
+            header=_header(stamp, frame),
+            status=NavSatStatus(status=NavSatStatus.STATUS_NO_FIX,
+                                service=NavSatStatus.SERVICE_GPS),
+            latitude=math.nan, longitude=math.nan, altitude=math.nan,
+            position_covariance_type=NavSatFix.COVARIANCE_TYPE_UNKNOWN)
     return NavSatFix(
         header=_header(stamp, frame),
         status=NavSatStatus(status=NavSatStatus.STATUS_FIX, service=NavSatStatus.SERVICE_GPS),

@@ -57,6 +57,9 @@ def test_transforms_imu_and_fix_carry_the_readings():
     assert v.header.frame_id == "world"  # the frame the ENU twist is in, not the antenna's
     assert list(v.twist.covariance)[::7] == [0.01, 0.01, 0.01] + [UNMEASURED_VARIANCE] * 3
     assert np.linalg.eigvalsh(np.reshape(v.twist.covariance, (6, 6))).min() >= 0.0
+    lost = nav_sat_fix(stamp, "alpha/gnss_link", fix, fix=False)  # an outage
+    assert lost.status.status == -1 and lost.position_covariance_type == 0  # NO_FIX, UNKNOWN
+    assert math.isnan(lost.latitude) and math.isnan(lost.longitude)
 
 
 def test_thruster_topics_are_commands_a_replay_republishes():

@@ -121,6 +121,27 @@ def test_tf_is_the_odometry_and_tf_static_mounts_every_sensor(boatsim, tmp_path)
     assert np.abs(np.array(errors)[:, :2]).max() > 0.1  # noise is there
 
 
+def test_a_gnss_outage_publishes_no_fix_and_no_velocity_then_fixes_again(boatsim, tmp_path):
+    gnss = {**GNSS, "outages": [[1.0, 2.0]]}
+    path = tmp_path / "outage.yaml"
+    path.write_text(yaml.safe_dump({"simulation": {"seed": 3, "datum": DATUM},
+                                    "boats": [{"name": "alpha", "sensors": [gnss]}]}))
+    msgs = _run(boatsim, tmp_path, path, 3, "bag")
+
+    def t(msg):
+        return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+
+    fixes = [m for _, m in msgs["/alpha/gnss/fix"]]
+    assert len(fixes) == 15  # 5 Hz, t = 0.2 .. 3.0 s
+    lost = [m for m in fixes if 1.0 <= t(m) < 2.0 - 1e-9]
+    assert len(lost) == 5 and all(m.status.status == -1 and math.isnan(m.latitude)
+                                  for m in lost)
+    kept = [m for m in fixes if m not in lost]
+    assert all(m.status.status == 0 and abs(m.latitude - 45.0) < 1e-3 for m in kept)
+    velocity_times = [t(m) for _, m in msgs["/alpha/gnss/vel"]]
+    assert len(velocity_times) == 10 and not any(1.0 <= x < 2.0 - 1e-9 for x in velocity_times)
+
+
 def test_an_imu_on_a_boat_at_rest_in_still_water_reads_g_with_its_noise(boatsim, tmp_path):
     # white noise and a slow bias (no random walk, whose drift over the run would add to the
     # spread): 2,000 readings

@@ -27,6 +27,7 @@ from boat_dynamics.physics.sensors import (
     OdometrySpec,
     SensorSpec,
     gnss_start,
+    has_fix,
     imu_start,
     measure_gnss,
     measure_imu,
@@ -196,8 +197,10 @@ class SensorPublisher:
                                                     spec.position - com))
         reading, sensor.state = measure_gnss(spec, sensor.key, sensor.state, self._sim.datum,
                                              antenna, velocity)
-        sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading))
-        sensor.pubs[1].publish(gnss_velocity(stamp, reading))
+        fix = has_fix(spec, after.t)  # in an outage: NO_FIX, and no velocity
+        sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading, fix))
+        if fix:
+            sensor.pubs[1].publish(gnss_velocity(stamp, reading))
 
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState) -> None:
         rot = rotation_matrix(after.orientation)

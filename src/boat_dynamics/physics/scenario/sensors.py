@@ -71,7 +71,7 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
     for i, item in enumerate(raw):
         k = f"{key}[{i}]"
         d = mapping(item, k)
-        only(d, k, ("type", "name", "rate_hz", "position", "noise"))
+        only(d, k, ("type", "name", "rate_hz", "position", "noise", "outages"))
         describe(f"{k}.type", None, f"one of: {', '.join(SENSOR_TYPES)}",
                  default_doc="required")
         describe(f"{k}.name", None, f"{ROS_NAME_RULE}; unique on the boat: its topics and "
@@ -96,10 +96,13 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
                  "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg",
                  default_doc="each key's default below")
         noise = mapping(d.get("noise"), f"{k}.noise")
+        if kind != "gnss" and "outages" in d:
+            raise ScenarioError(f"{k}.outages", d["outages"], "only for a gnss")
         if kind == "imu":
             out.append(_imu(name, rate, position, noise, f"{k}.noise"))
         elif kind == "gnss":
-            out.append(GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise")))
+            out.append(GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
+                                _outages(d.get("outages"), f"{k}.outages")))
         else:
             if "position" in d:
                 raise ScenarioError(f"{k}.position", d["position"],
@@ -156,6 +159,26 @@ def _odometry_noise(d: Mapping[str, Any], key: str) -> OdometryNoise:
         math.radians(number(d, "angular_velocity_sigma_deg", key,
                             math.degrees(default.angular_velocity_sigma), 0.0, 1000.0,
                             unit="deg/s")))
+
+
+def _outages(raw: Any, key: str) -> tuple[tuple[float, float], ...]:
+    """A receiver's outages: a list of [start, end] s of simulation time, 0 <= start < end."""
+    allowed = "a list of [start, end] s of simulation time, 0 <= start < end (end may be .inf)"
+    describe(key, [], f"gnss: {allowed}, without a fix", default_doc="none")
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise ScenarioError(key, raw, f"must be {allowed}")
+    out = []
+    for i, pair in enumerate(raw):
+        ok = (isinstance(pair, list) and len(pair) == 2
+              and all(isinstance(x, int | float) and not isinstance(x, bool) for x in pair)
+              and 0.0 <= pair[0] < pair[1] and math.isfinite(pair[0]))
+        if not ok:
+            raise ScenarioError(f"{key}[{i}]", pair, "must be [start, end] s with 0 <= start "
+                                "< end (end may be .inf)")
+        out.append((float(pair[0]), float(pair[1])))
+    return tuple(out)
 
 
 def _gnss_noise(d: Mapping[str, Any], key: str) -> GnssNoise:

@@ -16,6 +16,7 @@ from boat_dynamics.physics.sensors.gnss import (
     enu_to_geodetic,
     geodetic_to_enu,
     gnss_start,
+    has_fix,
     measure_gnss,
 )
 from boat_dynamics.physics.sensors.imu import (
@@ -38,7 +39,7 @@ from boat_dynamics.physics.sensors.odometry import (
 __all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "ImuReading",
            "ImuSpec", "ImuState", "InertialNoise", "OdometryNoise", "OdometryReading",
            "OdometrySpec", "SensorSpec", "enu_to_geodetic",
-           "geodetic_to_enu", "gnss_start", "imu_start", "measure_gnss", "measure_imu",
+           "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_gnss", "measure_imu",
            "measure_odometry", "stream_key", "true_motion"]
 
 #: A sensor of a boat's ``sensors`` list.

@@ -15,6 +15,10 @@ differential GPS"), and white velocity noise of ``velocity_sigma``. The defaults
 single-frequency standalone receiver: 1.5 m horizontal and 3 m vertical white, 0.5 m
 correlated over 60 s, 0.05 m/s. The fix's covariance is their sum, per axis
 (``COVARIANCE_TYPE_DIAGONAL_KNOWN``).
+
+Outages (``outages``: intervals of simulation time: under a bridge, beside a quay wall): the
+receiver has no fix (:func:`has_fix`); its noise runs on, so the fixes after an outage are
+those it would have had.
 """
 
 from __future__ import annotations
@@ -27,7 +31,7 @@ import pymap3d
 from boat_dynamics.physics.sensors.noise import gauss_markov, standard_normal
 
 __all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "enu_to_geodetic",
-           "geodetic_to_enu", "gnss_start", "measure_gnss"]
+           "geodetic_to_enu", "gnss_start", "has_fix", "measure_gnss"]
 
 
 @dataclass(frozen=True)
@@ -66,12 +70,14 @@ class GnssSpec:
         rate_hz: fixes per simulated second.
         position: (3,) m, body frame, the antenna's point from the hull reference point.
         noise: its noise.
+        outages: ((start, end), ...) s of simulation time, start <= t < end, without a fix.
     """
 
     name: str = "gnss"
     rate_hz: float = 5.0
     position: np.ndarray = field(default_factory=lambda: np.zeros(3))
     noise: GnssNoise = GnssNoise()
+    outages: tuple[tuple[float, float], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -115,6 +121,11 @@ def geodetic_to_enu(datum: Datum, latitude: float, longitude: float,
     return np.array(pymap3d.geodetic2enu(latitude, longitude, altitude, datum.latitude,
                                          datum.longitude, datum.altitude, deg=False),
                     dtype=float)
+
+
+def has_fix(spec: GnssSpec, t: float) -> bool:
+    """Whether the receiver has a fix at simulation time ``t`` (s): not in an outage."""
+    return not any(start <= t < end for start, end in spec.outages)
 
 
 def _bias_sigma(noise: GnssNoise) -> np.ndarray:

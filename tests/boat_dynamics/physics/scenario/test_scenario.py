@@ -142,6 +142,12 @@ def test_density_derives_mass():
         ({"boats": [{"sensors": [{"type": "imu", "noise": {"accelerometer": {
             "scale_factor": math.nan}}}]}]},
          "boats[0].sensors[0].noise.accelerometer.scale_factor", "[0, 0.5]"),
+        ({"boats": [{"sensors": [{"type": "gnss", "outages": [[2.0, 1.0]]}]}]},
+         "boats[0].sensors[0].outages[0]", "0 <= start < end"),
+        ({"boats": [{"sensors": [{"type": "gnss", "outages": [1.0, 2.0]}]}]},
+         "boats[0].sensors[0].outages[0]", "[start, end]"),
+        ({"boats": [{"sensors": [{"type": "imu", "outages": [[1.0, 2.0]]}]}]},
+         "boats[0].sensors[0].outages", "only for a gnss"),
         ({"boats": [{"sensors": [{"type": "gnss", "noise": {"horizontal_sigma": -1}}]}]},
          "boats[0].sensors[0].noise.horizontal_sigma", "[0, 10000] m"),
         ({"boats": [{"sensors": [{"type": "gnss", "noise": {"vertical_sigma": 1,
@@ -355,3 +361,9 @@ def test_an_imu_takes_its_scale_factor_misalignment_and_range():
     assert imu.gyroscope.misalignment == pytest.approx(math.radians(0.1))
     assert (imu.gyroscope.range, imu.accelerometer.range) == (5.0, math.inf)
     assert imu.accelerometer.scale_factor == imu.accelerometer.misalignment == 0.0  # ideal
+
+
+def test_a_gnss_takes_its_outages():
+    sc = parse_scenario({"boats": [{"sensors": [
+        {"type": "gnss", "outages": [[1, 2.5], [10.0, math.inf]]}]}]})
+    assert sc.boats[0].sensors[0].outages == ((1.0, 2.5), (10.0, math.inf))

@@ -81,3 +81,12 @@ def test_the_same_seed_gives_the_same_fixes():
     a, _, _ = _fixes(GnssNoise(), 20, seed=5)
     b, _, _ = _fixes(GnssNoise(), 20, seed=5)
     np.testing.assert_array_equal(a, b)
+
+
+def test_a_receiver_has_no_fix_in_its_outages_only():
+    from boat_dynamics.physics.sensors import GnssSpec, has_fix
+
+    spec = GnssSpec(outages=((1.0, 2.5), (10.0, math.inf)))
+    assert [has_fix(spec, t) for t in (0.0, 0.99, 1.0, 2.0, 2.5, 9.99, 10.0, 1e6)] == [
+        True, True, False, False, True, True, False, False]
+    assert has_fix(GnssSpec(), 5.0)  # no outages: always a fix
