@@ -142,6 +142,25 @@ def test_a_gnss_outage_publishes_no_fix_and_no_velocity_then_fixes_again(boatsim
     assert len(velocity_times) == 10 and not any(1.0 <= x < 2.0 - 1e-9 for x in velocity_times)
 
 
+def test_dropouts_lose_readings_and_leave_the_others_as_they_were(boatsim, tmp_path):
+    """An IMU and a GNSS with dropouts publish some of their readings; each one published is
+    the very reading of the same run without dropouts (the noise runs on)."""
+    runs = {}
+    for dropout in (0.0, 0.4):
+        sensors = [{**IMU, "dropout": dropout}, {**GNSS, "dropout": dropout}]
+        path = tmp_path / f"dropout_{dropout}.yaml"
+        path.write_text(yaml.safe_dump({"simulation": {"seed": 3, "datum": DATUM},
+                                        "boats": [{"name": "alpha", "sensors": sensors}]}))
+        runs[dropout] = _run(boatsim, tmp_path, path, 2, f"bag_{dropout}")
+    for topic, full in (("/alpha/imu/data", 200), ("/alpha/gnss/fix", 10)):
+        every = {stamp: repr(m) for stamp, m in runs[0.0][topic]}
+        some = {stamp: repr(m) for stamp, m in runs[0.4].get(topic, [])}
+        assert len(every) == full
+        assert 0 < len(some) < full  # about 60 %: 120 of 200 IMU readings, 6 of 10 fixes
+        assert all(every[stamp] == msg for stamp, msg in some.items()), topic
+    assert abs(len(runs[0.4]["/alpha/imu/data"]) - 120) < 3 * math.sqrt(200 * 0.24)
+
+
 def test_an_imu_on_a_boat_at_rest_in_still_water_reads_g_with_its_noise(boatsim, tmp_path):
     # white noise and a slow bias (no random walk, whose drift over the run would add to the
     # spread): 2,000 readings

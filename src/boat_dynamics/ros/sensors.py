@@ -26,6 +26,7 @@ from boat_dynamics.physics.sensors import (
     ImuSpec,
     OdometrySpec,
     SensorSpec,
+    dropped,
     gnss_start,
     has_fix,
     imu_start,
@@ -174,22 +175,27 @@ class SensorPublisher:
                 continue
             if index not in now:
                 now[index] = after.boat(index)
+            sample = sensor.state if isinstance(sensor.state, int) else sensor.state.sample
+            send = not dropped(sensor.key, sample, sensor.spec.dropout)  # measured either way
             if isinstance(sensor.spec, ImuSpec):
-                self._imu(sensor, stamp, center_of_mass[index], before.boat(index), now[index])
+                self._imu(sensor, stamp, center_of_mass[index], before.boat(index), now[index],
+                          send)
             elif isinstance(sensor.spec, GnssSpec):
-                self._gnss(sensor, stamp, center_of_mass[index], now[index])
+                self._gnss(sensor, stamp, center_of_mass[index], now[index], send)
             else:
-                self._odometry(sensor, stamp, center_of_mass[index], now[index])
+                self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
     def _imu(self, sensor: _Sensor, stamp, com: np.ndarray, before: BoatState,
-             after: BoatState) -> None:
+             after: BoatState, send: bool) -> None:
         spec = sensor.spec
         omega, force = true_motion(com, before, after, spec.position, self._sim.gravity)
         reading, sensor.state = measure_imu(spec, sensor.key, sensor.state, after.orientation,
                                             omega, force)
-        sensor.pubs[0].publish(imu(stamp, sensor.frame, reading))
+        if send:
+            sensor.pubs[0].publish(imu(stamp, sensor.frame, reading))
 
-    def _gnss(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState) -> None:
+    def _gnss(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
+              send: bool) -> None:
         spec: GnssSpec = sensor.spec
         rot = rotation_matrix(after.orientation)
         antenna = after.position + rot @ (spec.position - com)
@@ -198,18 +204,21 @@ class SensorPublisher:
         reading, sensor.state = measure_gnss(spec, sensor.key, sensor.state, self._sim.datum,
                                              antenna, velocity)
         fix = has_fix(spec, after.t)  # in an outage: NO_FIX, and no velocity
-        sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading, fix))
-        if fix:
+        if send:
+            sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading, fix))
+        if send and fix:
             sensor.pubs[1].publish(gnss_velocity(stamp, reading))
 
-    def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState) -> None:
+    def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
+                  send: bool) -> None:
         rot = rotation_matrix(after.orientation)
         reading = measure_odometry(sensor.spec, sensor.key, sensor.state, after.position
                                    - rot @ com, after.orientation,
                                    after.velocity - np.cross(after.angular_velocity, com),
                                    after.angular_velocity)
         sensor.state += 1
-        sensor.pubs[0].publish(noisy_odometry(stamp, sensor.frame, reading))
+        if send:
+            sensor.pubs[0].publish(noisy_odometry(stamp, sensor.frame, reading))
 
 
 def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -71,7 +72,7 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
     for i, item in enumerate(raw):
         k = f"{key}[{i}]"
         d = mapping(item, k)
-        only(d, k, ("type", "name", "rate_hz", "position", "noise", "outages"))
+        only(d, k, ("type", "name", "rate_hz", "position", "noise", "outages", "dropout"))
         describe(f"{k}.type", None, f"one of: {', '.join(SENSOR_TYPES)}",
                  default_doc="required")
         describe(f"{k}.name", None, f"{ROS_NAME_RULE}; unique on the boat: its topics and "
@@ -98,16 +99,19 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
         noise = mapping(d.get("noise"), f"{k}.noise")
         if kind != "gnss" and "outages" in d:
             raise ScenarioError(f"{k}.outages", d["outages"], "only for a gnss")
+        dropout = number(d, "dropout", k, 0.0, 0.0, 1.0,
+                         unit="(the probability that a reading is lost)")
         if kind == "imu":
-            out.append(_imu(name, rate, position, noise, f"{k}.noise"))
+            spec = _imu(name, rate, position, noise, f"{k}.noise")
         elif kind == "gnss":
-            out.append(GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
-                                _outages(d.get("outages"), f"{k}.outages")))
+            spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
+                            _outages(d.get("outages"), f"{k}.outages"))
         else:
             if "position" in d:
                 raise ScenarioError(f"{k}.position", d["position"],
                                     "not for an odometry (it is the hull reference point's)")
-            out.append(OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise")))
+            spec = OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise"))
+        out.append(replace(spec, dropout=dropout))
     return tuple(out)
 
 

@@ -28,7 +28,7 @@ from boat_dynamics.physics.sensors.imu import (
     measure_imu,
     true_motion,
 )
-from boat_dynamics.physics.sensors.noise import stream_key
+from boat_dynamics.physics.sensors.noise import dropped, stream_key
 from boat_dynamics.physics.sensors.odometry import (
     OdometryNoise,
     OdometryReading,
@@ -38,7 +38,7 @@ from boat_dynamics.physics.sensors.odometry import (
 
 __all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "ImuReading",
            "ImuSpec", "ImuState", "InertialNoise", "OdometryNoise", "OdometryReading",
-           "OdometrySpec", "SensorSpec", "enu_to_geodetic",
+           "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",
            "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_gnss", "measure_imu",
            "measure_odometry", "stream_key", "true_motion"]
 

@@ -71,6 +71,7 @@ class GnssSpec:
         position: (3,) m, body frame, the antenna's point from the hull reference point.
         noise: its noise.
         outages: ((start, end), ...) s of simulation time, start <= t < end, without a fix.
+        dropout: the probability that a fix is lost (neither it nor its velocity published).
     """
 
     name: str = "gnss"
@@ -78,6 +79,7 @@ class GnssSpec:
     position: np.ndarray = field(default_factory=lambda: np.zeros(3))
     noise: GnssNoise = GnssNoise()
     outages: tuple[tuple[float, float], ...] = ()
+    dropout: float = 0.0
 
 
 @dataclass(frozen=True)

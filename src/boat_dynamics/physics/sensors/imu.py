@@ -89,6 +89,7 @@ class ImuSpec:
         gyroscope: angular-rate noise.
         accelerometer: specific-force noise.
         orientation_sigma: rad, white attitude noise per axis.
+        dropout: the probability that a reading is lost (not published).
     """
 
     name: str = "imu"
@@ -97,6 +98,7 @@ class ImuSpec:
     gyroscope: InertialNoise = GYROSCOPE
     accelerometer: InertialNoise = ACCELEROMETER
     orientation_sigma: float = math.radians(0.1)
+    dropout: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -23,7 +23,11 @@ import math
 
 import numpy as np
 
-__all__ = ["gauss_markov", "random_walk", "standard_normal", "stream_key"]
+__all__ = ["DROPOUT_SAMPLES", "dropped", "gauss_markov", "random_walk", "standard_normal",
+           "stream_key"]
+
+#: Where a stream's dropout draws start (:func:`dropped`): past every reading's own counter.
+DROPOUT_SAMPLES = 2**61
 
 
 def stream_key(seed: int, *names: str | int) -> np.ndarray:
@@ -59,3 +63,17 @@ def gauss_markov(value: np.ndarray, sigma: float | np.ndarray, tau: float, dt: f
 def random_walk(value: np.ndarray, density: float, dt: float, draws: np.ndarray) -> np.ndarray:
     """The random walk one interval ``dt`` (s) later, with N(0, 1) ``draws``."""
     return value + density * math.sqrt(dt) * draws
+
+
+def dropped(key: np.ndarray, sample: int, probability: float) -> bool:
+    """Whether reading ``sample`` of stream ``key`` is lost (a dropout of ``probability``).
+
+    A uniform draw at counter :data:`DROPOUT_SAMPLES` + ``sample``, apart from the reading's
+    noise: the same readings are lost in every run of a seed, and the noise of the others is
+    what it would be without dropouts.
+    """
+    if probability <= 0.0:
+        return False
+    counter = np.array([0, DROPOUT_SAMPLES + sample, 0, 0], dtype=np.uint64)
+    draw = np.random.Generator(np.random.Philox(key=key, counter=counter)).random()
+    return bool(draw < probability)

@@ -31,11 +31,15 @@ class OdometryNoise:
 
 @dataclass(frozen=True)
 class OdometrySpec:
-    """A noisy odometry of a boat: topic ``<ns>/<name>``, child frame ``<ns>/base_link``."""
+    """A noisy odometry of a boat: topic ``<ns>/<name>``, child frame ``<ns>/base_link``.
+
+    ``dropout``: the probability that a reading is lost (not published).
+    """
 
     name: str = "odometry"
     rate_hz: float = 50.0
     noise: OdometryNoise = OdometryNoise()
+    dropout: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -142,6 +142,8 @@ def test_density_derives_mass():
         ({"boats": [{"sensors": [{"type": "imu", "noise": {"accelerometer": {
             "scale_factor": math.nan}}}]}]},
          "boats[0].sensors[0].noise.accelerometer.scale_factor", "[0, 0.5]"),
+        ({"boats": [{"sensors": [{"type": "odometry", "dropout": 1.5}]}]},
+         "boats[0].sensors[0].dropout", "[0, 1]"),
         ({"boats": [{"sensors": [{"type": "gnss", "outages": [[2.0, 1.0]]}]}]},
          "boats[0].sensors[0].outages[0]", "0 <= start < end"),
         ({"boats": [{"sensors": [{"type": "gnss", "outages": [1.0, 2.0]}]}]},
@@ -367,3 +369,6 @@ def test_a_gnss_takes_its_outages():
     sc = parse_scenario({"boats": [{"sensors": [
         {"type": "gnss", "outages": [[1, 2.5], [10.0, math.inf]]}]}]})
     assert sc.boats[0].sensors[0].outages == ((1.0, 2.5), (10.0, math.inf))
+    assert sc.boats[0].sensors[0].dropout == 0.0
+    sc = parse_scenario({"boats": [{"sensors": [{"type": "imu", "dropout": 0.25}]}]})
+    assert sc.boats[0].sensors[0].dropout == 0.25
