@@ -41,6 +41,7 @@ __all__ = [
     "diagnostic_array_cdr",
     "odometry_template",
     "pose_template",
+    "stamp_ns",
     "stamp_parts",
     "tf_template",
     "twist_template",
@@ -57,15 +58,19 @@ class TemplateError(ValueError):
     """A field cannot be located in a message's serialized form."""
 
 
-def stamp_parts(seconds: float, epoch: float = 0.0) -> tuple[int, int]:
-    """(sec, nanosec) of a builtin_interfaces/Time at ``seconds`` after ``epoch`` (both s, >= 0).
+def stamp_ns(seconds: float, epoch: float = 0.0) -> int:
+    """The stamp, integer ns, of ``seconds`` after ``epoch`` (both s, >= 0).
 
     Each is rounded to the ns on its own and added as integers: a wall-clock epoch (1.7e9 s)
-    plus a simulation time in one float is rounded to 238 ns, which made the stamps of steps
-    0.01 s apart differ by 0.01 s +-238 ns.
+    plus a simulation time in one float is rounded to its 238 ns spacing, which made the
+    stamps of steps 0.01 s apart differ by 0.01 s +-128 ns.
     """
-    ns = round(epoch * 1e9) + round(seconds * 1e9)
-    return ns // 1_000_000_000, ns % 1_000_000_000
+    return round(epoch * 1e9) + round(seconds * 1e9)
+
+
+def stamp_parts(seconds: float, epoch: float = 0.0) -> tuple[int, int]:
+    """(sec, nanosec) of a builtin_interfaces/Time: :func:`stamp_ns` split."""
+    return divmod(stamp_ns(seconds, epoch), 1_000_000_000)
 
 
 def _step(obj: object, name: str) -> object:

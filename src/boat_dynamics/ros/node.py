@@ -54,9 +54,7 @@ from boat_dynamics.physics.scenario.specs import (
 )
 from boat_dynamics.ros.outputs import FleetPublisher, StartInterrupted
 from boat_msgs_py import names
-from boat_msgs_py.cdr import (
-    clock_template,
-)
+from boat_msgs_py.cdr import clock_template, stamp_ns
 from boat_msgs_py.convert import (
     environment_from_msg,
     lockstep_grant,
@@ -99,7 +97,7 @@ class SimClock:
 
     def stamp_ns(self) -> int:
         """Message / bag timestamp of the current simulation time, ns (integer arithmetic)."""
-        return round(self.epoch * 1e9) + round(self.t * 1e9)  # as the ocean's stamps
+        return stamp_ns(self.t, self.epoch)  # as the ocean's stamps
 
     def stamp(self) -> tuple[int, int]:
         """(sec, nanosec) of :meth:`stamp_ns`."""
