@@ -162,7 +162,10 @@ def number(
     describe(path, default, f"number in {range_doc or bounds}", default_doc)
     if isinstance(v, bool) or not isinstance(v, (int, float)):
         raise ScenarioError(path, v, f"must be a number in {bounds}")
-    v = float(v)
+    try:
+        v = float(v)
+    except OverflowError:  # an integer of hundreds of digits
+        raise ScenarioError(path, v, f"must be in {bounds}") from None
     if math.isnan(v) or (math.isinf(v) and not allow_inf):
         raise ScenarioError(path, v, f"must be a finite number in {bounds}")
     if v < low or v > high or (low_open and v == low):
@@ -185,7 +188,10 @@ def vector(d: Mapping[str, Any], name: str, key: str, n: int, default: list[floa
     if (not isinstance(v, (list, tuple)) or len(v) != n
             or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in v)):
         raise ScenarioError(path, v, f"must be a list of {n} numbers")
-    arr = np.array(v, dtype=float)
+    try:
+        arr = np.array(v, dtype=float)
+    except OverflowError:  # an integer of hundreds of digits
+        raise ScenarioError(path, v, f"must be a list of {n} finite numbers") from None
     if not np.all(np.isfinite(arr)):
         raise ScenarioError(path, v, f"must be a list of {n} finite numbers")
     if np.any(arr < low):
