@@ -11,6 +11,8 @@ __all__ = [
     "CLOCK_NODE",
     "CMD_RUDDER",
     "CMD_THRUST",
+    "COLLISION",
+    "COLLISION_WRENCH",
     "COMMAND_NAMES",
     "DIAGNOSTICS",
     "DYNAMICS_NODE",
@@ -37,6 +39,7 @@ __all__ = [
     "UNKNOWN_NODE",
     "WAVE_FIELD",
     "WORLD_FRAME",
+    "WORLD_MARKERS",
     "WRENCH_SOURCES",
     "boat_of",
     "boat_topic",
@@ -58,6 +61,8 @@ COMMAND_NAMES = (CMD_THRUST, CMD_RUDDER)
 THRUSTER_THRUST = "thrust"
 THRUSTER_ANGLE = "angle"
 ODOM = "odom"
+#: boat_msgs/Collision: a boat's contact with an obstacle began or ended (events).
+COLLISION = "collision"
 POSE = "pose"
 TWIST = "twist"
 #: wrench/<source> topics published by the dynamics node (``total`` includes gravity).
@@ -65,6 +70,8 @@ WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "diffractio
                   "wind", "total")
 #: wrench/carriage: a towed boat's carriage force (the resistance), only for a boat on one.
 CARRIAGE_WRENCH = "carriage"
+#: wrench/collision: the obstacles' push on a boat, only in a world with obstacles.
+COLLISION_WRENCH = "collision"
 
 WAVE_FIELD = "/ocean/wave_field"
 #: boat_msgs/Environment: the current and the wind (latched, republished on change).
@@ -97,6 +104,8 @@ STEP_REFUSED = "/boatsim/step_refused"
 FLEET_STATE = "/boatsim/fleet_state"
 #: diagnostic_msgs/DiagnosticArray, one status per boat.
 DIAGNOSTICS = "/diagnostics"
+#: visualization_msgs/MarkerArray, latched: the scenario's fixed obstacles (``world``), once.
+WORLD_MARKERS = "/world/markers"
 
 #: ROS 2's own topics: logs and parameter events (never equal between two runs).
 ROSOUT = "/rosout"

@@ -16,6 +16,7 @@ from rclpy.qos import (
 
 __all__ = [
     "CLOCK_QOS",
+    "COLLISION_QOS",
     "COMMAND_QOS",
     "DIAGNOSTICS_QOS",
     "ENVIRONMENT_QOS",
@@ -29,6 +30,7 @@ __all__ = [
     "TF_QOS",
     "TF_STATIC_QOS",
     "WAVE_FIELD_QOS",
+    "WORLD_QOS",
     "latched",
     "serving",
 ]
@@ -80,6 +82,13 @@ TF_STATIC_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_LAST, depth=1,
     reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL,
 )
+#: <ns>/collision events: reliable, last 100, volatile (a bounce makes two a step apart).
+COLLISION_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_LAST, depth=100,
+    reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+)
+#: /world/markers: as /tf_static (reliable, transient-local, last 1): the obstacles, once.
+WORLD_QOS = TF_STATIC_QOS
 #: <ns>/<imu>/data, <ns>/<gnss>/fix and vel: reliable, last 10, volatile (best-effort
 #: sensor-data subscribers connect too).
 SENSOR_QOS = STATE_QOS

@@ -10,25 +10,15 @@ import socket
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
 from support import cli_run
+from support import rrd_entities as _entities
 
 MULTI = "scenarios/multi_boat.yaml"
 #: rerun-sdk (the view extra; make test installs it) needs Python 3.11.
 pytestmark = pytest.mark.skipif(sys.version_info < (3, 11), reason="rerun-sdk needs 3.11+")
-
-
-def _entities(rrd):
-    """The entity paths of a .rrd file, from `rerun rrd stats`."""
-    rerun = shutil.which("rerun", path=str(Path(sys.executable).parent))
-    out = subprocess.run([rerun, "rrd", "stats", str(rrd)], capture_output=True, text=True,
-                         timeout=60)
-    assert out.returncode == 0, out.stderr
-    section = out.stdout.split("Num chunks per entity")[1].split("Num chunks per index")[0]
-    return {line.split(":")[0].strip() for line in section.splitlines() if line.startswith("/")}
 
 
 @pytest.fixture(scope="module")

@@ -52,6 +52,7 @@ from boat_dynamics.physics.scenario.specs import (
     SimulationSettings,
     WrenchTopics,
 )
+from boat_dynamics.ros.collisions import CollisionEvents
 from boat_dynamics.ros.outputs import FleetPublisher, StartInterrupted
 from boat_msgs_py import names
 from boat_msgs_py.cdr import clock_template, stamp_ns
@@ -211,6 +212,7 @@ class DynamicsNode(Node):
             WaveFieldMsg, names.WAVE_FIELD, self._on_wave_field, WAVE_FIELD_QOS)
         # the scenario's current and wind from the first step; the ocean's changes as they come
         self.environment: Environment = scenario.environment
+        self.world = scenario.world  # fixed obstacles: from the scenario, never changed
         self._environment_sub = self.create_subscription(
             EnvironmentMsg, names.ENVIRONMENT, self._on_environment, ENVIRONMENT_QOS)
         if any(spec.params.derive is not None for spec in scenario.boats):
@@ -292,7 +294,10 @@ class DynamicsNode(Node):
         self.intake = CommandIntake([Commanded(spec.params, spec.commands, len(spec.thrusters))
                                      for spec in scenario.boats])
         self.outputs = FleetPublisher(self, scenario.boats, scenario.simulation, self._tap,
-                                      self._graph, stopped)
+                                      self._graph, stopped,
+                                      collisions=bool(scenario.world.obstacles)
+                                      or len(scenario.boats) > 1)
+        self.collisions = CollisionEvents(self, list(scenario.boats), scenario.world, self._tap)
         self.boats = []
         for i, spec in enumerate(scenario.boats):
             if stopped is not None and stopped():
@@ -648,7 +653,8 @@ class DynamicsNode(Node):
         inputs = self._fleet_inputs()
         for _ in range(self._substeps):
             done = pipeline.step(self._system, self._state, inputs, self.sea, self._dt,
-                                 self._contact_if_known(), self.environment)
+                                 self._contact_if_known(), self.environment, self.world)
+            self.collisions.observe(self._system, self._state, done)
             self._before = self._state
             self._state, self._forces, self._contact = done.state, done.forces, None
             self._towing = done.towing
@@ -688,10 +694,12 @@ class DynamicsNode(Node):
             forces = self._forces
             if forces is None:  # before the first step: the forces at the initial state
                 forces, _ = pipeline.forces(self._system, self._state, self._fleet_inputs(),
-                                            self._current_contact(), self.environment)
+                                            self._current_contact(), self.environment,
+                                            self.world)
             self.outputs.wrenches(sec, nanosec, forces, time.monotonic(),
                                   self._carriage if self._towing is not None else None)
             self.outputs.diagnostics(sec, nanosec, self._statuses())
+        self.collisions.publish(self._sim_clock.epoch)
 
     def _state_values(self) -> np.ndarray:
         """(B, 13): each boat's reference point, orientation, its velocity and angular velocity.

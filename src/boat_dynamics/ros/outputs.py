@@ -63,13 +63,13 @@ class FleetPublisher:
 
     def __init__(self, node: Node, boats: Sequence[BoatSpec], sim: SimulationSettings,
                  tap: Tap | None, graph: GraphWatch | None,
-                 stopped: Callable[[], bool] | None = None) -> None:
+                 stopped: Callable[[], bool] | None = None, collisions: bool = False) -> None:
         self.pubs: list[dict[str, TappedPublisher]] = []
         templates: list[dict] = []
         for i, spec in enumerate(boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
                 raise StartInterrupted(f"stopped while making boat {i} of {len(boats)}")
-            self.pubs.append(_boat_publishers(node, spec, tap, graph))
+            self.pubs.append(_boat_publishers(node, spec, tap, graph, collisions))
             templates.append(_boat_templates(spec, templates[-1] if templates else {}))
         self._diag_pub = TappedPublisher(node, DiagnosticArray, names.DIAGNOSTICS,
                                          DIAGNOSTICS_QOS, tap)
@@ -84,7 +84,7 @@ class FleetPublisher:
         self._topics = {key: _FleetTopic([(i, p[key]) for i, p in enumerate(self.pubs)
                                           if key in p])
                         for key in ("pose", "twist", *names.WRENCH_SOURCES,
-                                    names.CARRIAGE_WRENCH)}
+                                    names.CARRIAGE_WRENCH, names.COLLISION_WRENCH)}
         self._state_pub, self._state = None, None  # every boat in one message
         if sim.fleet_state:
             self._state_pub = TappedPublisher(node, FleetStateMsg, names.FLEET_STATE,
@@ -139,16 +139,21 @@ class FleetPublisher:
                 for i, pub in pubs:
                     pub.publish(packed[k * len(self.pubs) + i])
         if carriage is not None:
-            self._carriage_wrenches(sec, nanosec, now, carriage)
+            self._boat_wrenches(names.CARRIAGE_WRENCH, sec, nanosec, now, carriage)
+        self._boat_wrenches(names.COLLISION_WRENCH, sec, nanosec, now, lambda i: np.concatenate(
+            [forces.collision.force[i], forces.collision.torque[i]]))
 
-    def _carriage_wrenches(self, sec: int, nanosec: int, now: float,
-                           carriage: Callable[[int], np.ndarray]) -> None:
-        """wrench/carriage of every towed boat that wants it (see :meth:`wrenches`)."""
-        wanted = self._topics[names.CARRIAGE_WRENCH].wanted(now)
+    def _boat_wrenches(self, key: str, sec: int, nanosec: int, now: float,
+                       value: Callable[[int], np.ndarray]) -> None:
+        """wrench/<key> of every boat that has it and wants it (see :meth:`wrenches`).
+
+        ``value``: boat index -> (6,) force (N) and moment (N m), body frame.
+        """
+        wanted = self._topics[key].wanted(now)
         if wanted:
             values = np.zeros((len(self.pubs), 6))
             for i, _ in wanted:
-                values[i] = carriage(i)
+                values[i] = value(i)
             packed = self._fleet["wrench"].pack(sec, nanosec, values)
             for i, pub in wanted:
                 pub.publish(packed[i])
@@ -213,15 +218,19 @@ class _FleetTopic:
         return self._wanted
 
 
-def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None,
-                     graph: GraphWatch | None) -> dict[str, TappedPublisher]:
-    """One boat's publishers: odom, pose, twist, wrench/<source>, wrench/carriage if towed."""
+def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None, graph: GraphWatch | None,
+                     collisions: bool) -> dict[str, TappedPublisher]:
+    """One boat's publishers: odom, pose, twist, wrench/<source> (+ carriage, collision).
+
+    wrench/carriage if the boat is towed; wrench/collision in a world with obstacles.
+    """
     pubs = {key: TappedPublisher(node, cls, names.boat_topic(spec.name, topic), STATE_QOS, tap)
             for key, cls, topic in (("odom", Odometry, names.ODOM),
                                     ("pose", PoseStamped, names.POSE),
                                     ("twist", TwistStamped, names.TWIST))}
     sources = [*names.WRENCH_SOURCES,
-               *([names.CARRIAGE_WRENCH] if spec.params.carriage is not None else [])]
+               *([names.CARRIAGE_WRENCH] if spec.params.carriage is not None else []),
+               *([names.COLLISION_WRENCH] if collisions else [])]
     for source in sources:
         pubs[source] = TappedPublisher(node, WrenchStamped, names.wrench_topic(spec.name, source),
                                        DIAGNOSTICS_QOS, tap, graph)

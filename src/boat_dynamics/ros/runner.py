@@ -38,6 +38,7 @@ from boat_dynamics.ros.node import (
     advertises_wrenches,
 )
 from boat_dynamics.ros.participants import PROFILE, Participants, use_profile
+from boat_dynamics.ros.world import WorldPublisher
 from boat_dynamics.tools.recording import BagWriter, TopicRecorder, declares_only, spin_pending
 from boat_msgs_py import names
 from boat_msgs_py.process import (
@@ -487,6 +488,9 @@ class _Loop:
                                if options.process.role == "all" else None,
                                environment=scenario.environment)
         self.nodes.append(self.ocean)
+        # the obstacles, latched, by the one process that owns the ocean
+        self.world_markers = WorldPublisher(self.ocean, scenario.world, tap)
+        self.world_markers.publish()
         if self.fast and options.process.shards:
             self.conductor = StepConductor(options.process.shards, scenario.digest, clock,
                                            self.duration, options.lockstep, tap,

@@ -49,6 +49,11 @@ EXERCISES: dict[str, dict] = {
         "ocean": {"depth": 50.0, "components": [{"amplitude": 0.3, "wavelength": 25.0}],
                   "spectrum": {"type": "jonswap", "significant_height": 1.0}},
         "environment": {"current": {"speed": 0.5}, "wind": {"speed": 8.0, "gusts": "norsok"}},
+        "world": {"obstacles": [{"name": "pier", "type": "polygon", "top": 1.0,
+                                 "points": [[20.0, -5.0], [21.0, -5.0], [21.0, 5.0]]},
+                                {"name": "pile", "type": "cylinder", "center": [0.0, 9.0],
+                                 "radius": 0.3}],
+                  "contact": {"frequency_hz": 5.0, "restitution": 0.5, "friction": 0.2}},
         "boats": [_boat(
             hull={"type": "box", "subdivisions": 2}, mass=4100.0, inertia=[1e3, 2e3, 2e3],
             inertia_scale=[1.0, 1.0, 1.0], inertia_products=[0.0, 0.0, 0.0],

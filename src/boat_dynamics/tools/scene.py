@@ -1,6 +1,7 @@
 """What `boatsim view` draws, logged to a Rerun recording (https://rerun.io).
 
-The boats' hulls at their poses, the sea around them, their paths and the forces on them.
+The boats' hulls at their poses, the sea around them, their paths and the forces on them,
+and the world's obstacles (``/world/markers``).
 
 Frames: Rerun's world is boatsim's ``world`` (ENU, z up: REP-103); each boat's entity
 ``world/<boat>`` carries the pose of its hull reference point (as its odom) and its children
@@ -45,6 +46,8 @@ _PATH_STEP = 0.2
 _PATH_POINTS = 5000
 _PATH_PERIOD = 1.0
 _PATH_WHOLE_PERIOD = 30.0
+#: visualization_msgs/Marker types drawn (:meth:`Scene.markers`).
+_TRIANGLE_LIST, _LINE_STRIP, _CYLINDER = 11, 4, 3
 #: Trough and crest colours of the sea, RGB.
 _TROUGH, _CREST = np.array([12, 44, 92]), np.array([96, 168, 222])
 #: Colours of the hulls (boat i gets colour i modulo the count) and of the force arrows.
@@ -208,6 +211,33 @@ class Scene:
         """Log what follows at simulation time ``t`` (s)."""
         self.t = t
         self._rr.set_time("sim_time", duration=t, recording=self._rec)
+
+    def markers(self, markers) -> None:
+        """The world's obstacles from a visualization_msgs/MarkerArray (``/world/markers``).
+
+        Static, under ``world/obstacles/<ns>/<id>``: a TRIANGLE_LIST as a mesh, a LINE_STRIP
+        as a line, a CYLINDER as a cylinder at its pose (markers in frame ``world``; other
+        types are left out).
+        """
+        rr = self._rr
+        for m in markers.markers:
+            entity = f"world/obstacles/{self._part(m.ns)}/{m.id}"
+            colour = [int(255 * c) for c in (m.color.r, m.color.g, m.color.b)]
+            points = np.array([[p.x, p.y, p.z] for p in m.points], dtype=np.float32)
+            if m.type == _TRIANGLE_LIST and len(points) >= 3:
+                count = len(points) // 3 * 3
+                self._log(entity, rr.Mesh3D(
+                    vertex_positions=points[:count],
+                    triangle_indices=np.arange(count, dtype=np.uint32).reshape(-1, 3),
+                    albedo_factor=colour), static=True)
+            elif m.type == _LINE_STRIP and len(points) >= 2:
+                self._log(entity, rr.LineStrips3D([points], colors=[colour],
+                                                  radii=[0.5 * m.scale.x]), static=True)
+            elif m.type == _CYLINDER:
+                p = m.pose.position
+                self._log(entity, rr.Cylinders3D(
+                    lengths=[m.scale.z], radii=[0.5 * m.scale.x], centers=[[p.x, p.y, p.z]],
+                    colors=[colour], fill_mode=rr.components.FillMode.Solid), static=True)
 
     def _log(self, entity: str, archetype, static: bool = False) -> None:
         """Every drawing goes through here (tests subclass it to see what is drawn)."""

@@ -235,9 +235,11 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO | None = None
         raise ViewError(str(exc)) from None
     wrenches = {names.wrench_topic(b, s): (b, s) for b in boats.values()
                 for s in options.sources if names.wrench_topic(b, s) in topics}
-    wanted = [*boats, *wrenches, *([names.WAVE_FIELD] if names.WAVE_FIELD in topics else [])]
+    wanted = [*boats, *wrenches, *([names.WAVE_FIELD] if names.WAVE_FIELD in topics else []),
+              *([names.WORLD_MARKERS] if names.WORLD_MARKERS in topics else [])]
     messages = read_bag(bag, wanted)
     fields = messages.pop(names.WAVE_FIELD, [])
+    obstacles = messages.pop(names.WORLD_MARKERS, [])
     try:
         sea = wave_field_from_msg(fields[0][1]) if fields else None
     except ValueError as exc:  # InvalidSeaStateError: what the ocean would refuse
@@ -247,6 +249,8 @@ def view_bag(bag: str | Path, options: ViewOptions, status: TextIO | None = None
                      for stamp, msg in msgs), key=lambda e: e[:2])  # repeated stamps: in order
     epoch = _stamp_ns(fields[0][1]) if fields else events[0][0]
     scene, rec, url, server = _scene(options, status)
+    for _, markers in obstacles[-1:]:  # latched: the last is the world
+        scene.markers(markers)
     for stamp, topic, msg in events:
         t = (stamp - epoch) / 1e9
         if topic in boats:
@@ -273,7 +277,7 @@ def _serve(stop: threading.Event) -> None:
 
 
 class _Live:
-    """The live view's subscriptions: the sea, each boat's odom and the drawn wrenches."""
+    """The live view's subscriptions: the sea, the obstacles, each boat's odom and wrenches."""
 
     def __init__(self, node, scene: Scene, sources: tuple[str, ...]) -> None:
         from boat_msgs.msg import WaveField
@@ -288,6 +292,11 @@ class _Live:
         self._next_discovery = -math.inf
         self.refused = 0  # wave fields refused
         node.create_subscription(WaveField, names.WAVE_FIELD, self._on_field, WAVE_FIELD_QOS)
+        from visualization_msgs.msg import MarkerArray
+
+        from boat_msgs_py.qos import WORLD_QOS
+
+        node.create_subscription(MarkerArray, names.WORLD_MARKERS, scene.markers, WORLD_QOS)
 
     def _on_field(self, msg) -> None:
         from boat_msgs_py.convert import wave_field_from_msg

@@ -142,3 +142,24 @@ def test_a_live_view_logs_a_bounded_amount_per_simulated_second_over_twenty_minu
     assert points_late <= whole + tail < 0.1 * scene_module._PATH_POINTS
     poses = scene.at("world/boat")
     assert poses[-1][0] == pytest.approx(duration)  # still drawing at the end
+
+
+def test_the_worlds_obstacles_are_drawn_once_from_their_markers():
+    from boat_dynamics.ros.world import world_markers
+
+    world = parse_scenario({"world": {"obstacles": [
+        {"name": "pier", "points": [[8, -2], [9, -2], [9, 2], [8, 2]], "top": 1.5},
+        {"name": "pile", "type": "cylinder", "center": [3, 4], "radius": 0.3}]}}).world
+    scene = Drawn({})
+    scene.markers(world_markers(world))
+    drawn = {e: (t, a) for t, e, a, _ in scene.drawn if e.startswith("world/obstacles")}
+    assert sorted(drawn) == ["world/obstacles/obstacles/0", "world/obstacles/obstacles/1",
+                             "world/obstacles/obstacles/100000"]
+    assert all(t is None for t, _ in drawn.values())  # static
+    walls = drawn["world/obstacles/obstacles/0"][1]
+    vertices = _values(walls.vertex_positions)
+    assert vertices.shape == (24, 3) and vertices[:, 2].max() == 1.5  # 4 walls, 2 triangles
+    assert _values(walls.triangle_indices).shape == (8, 3)
+    pile = drawn["world/obstacles/obstacles/1"][1]
+    np.testing.assert_allclose(_values(pile.centers), [[3.0, 4.0, 0.0]])  # from -2 to 2 m
+    np.testing.assert_allclose(_values(pile.radii), [0.3], rtol=1e-6)

@@ -16,6 +16,14 @@ from boat_dynamics.physics.body.wrench import Wrench
 from boat_dynamics.physics.core.contact import Contact, GroupContact
 from boat_dynamics.physics.core.system import FleetForces, FleetInputs, FleetState, System
 from boat_dynamics.physics.force_models.buoyancy import sample_point_group
+from boat_dynamics.physics.force_models.collision import (
+    BoatKinematics,
+    Touches,
+    collision_wrench,
+    hull_contact_wrench,
+    hull_touches,
+    touches,
+)
 from boat_dynamics.physics.force_models.damping import damping, radiation_damping
 from boat_dynamics.physics.force_models.hull_drag import hull_drag_in_motion
 from boat_dynamics.physics.force_models.mesh_buoyancy import pressure_wrenches
@@ -28,14 +36,16 @@ from boat_dynamics.physics.potential_flow.added_mass import added_mass_coriolis
 from boat_dynamics.physics.potential_flow.diffraction import excitation_wrench
 from boat_dynamics.physics.potential_flow.hull_lift import hull_lift
 from boat_dynamics.physics.potential_flow.radiation import memory_wrench
+from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.constants import AIR_DENSITY
 from ocean_sim.physics.environment import Environment
 
-__all__ = ["forces", "previous_swept"]
+__all__ = ["forces", "previous_swept", "touches_of"]
 
 
 def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Contact,
-           environment: Environment | None = None) -> tuple[FleetForces, np.ndarray]:
+           environment: Environment | None = None, world: World | None = None
+           ) -> tuple[FleetForces, np.ndarray]:
     """Every force model's wrench on every boat at ``state``, and their sum.
 
     Args:
@@ -45,6 +55,7 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         contact: the surface contact at ``state`` (:func:`.contact.contact`).
         environment: the current (it moves the water the damping, drag and rudder see) and
             the wind (:mod:`.wind`), or None: neither.
+        world: the fixed obstacles the hulls meet (:mod:`.collision`), or None: none.
 
     Returns:
         The forces (body frames, about the centres of mass), and (B, 3) the surface normal
@@ -111,9 +122,67 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         blow = wind_wrench(system.windage, system.windage_centre, wind_body, state.velocity,
                            com, AIR_DENSITY)
         total = total + blow
+    bump = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
+    if world is not None and world.contact is not None and (world.obstacles
+                                                            or system.count > 1):
+        bump = _collision(system, state, contact, world)
+        total = total + bump
     return (FleetForces(buoyancy=buoy, damping=damp, drag=drag, thrust=push, rudder=steer,
                         diffraction=scattered, slamming=slam, mooring=tether, wind=blow,
-                        gravity=weight, total=total), normals_ref)
+                        collision=bump, gravity=weight, total=total), normals_ref)
+
+
+def touches_of(system: System, state: FleetState, contact: Contact, world: World) -> Touches:
+    """Each boat's deepest point in an obstacle or another boat at ``state`` (contact events).
+
+    Returns:
+        :class:`~boat_dynamics.physics.force_models.collision.Touches` of the B boats:
+        ``other`` is an obstacle's index in ``world.obstacles``, or len(world.obstacles)
+        plus another boat's index, whichever is deeper; -1 touching nothing.
+    """
+    b = system.count
+    out = Touches(np.full(b, -1, dtype=np.intp), np.zeros((b, 3)), np.zeros((b, 2)),
+                  np.zeros(b), np.zeros(b))
+    k, fp = _kinematics(system, state, contact), system.footprints
+    found = []
+    if world.obstacles:
+        found.append((0, touches(world, k.world, k.body, fp.owner, b, k.rotation,
+                                 k.center_of_mass, k.velocity, k.angular_velocity)))
+    if b > 1:
+        found.append((len(world.obstacles), hull_touches(fp, k)))
+    for offset, t in found:
+        rows = (t.other >= 0) & (t.depth > out.depth)
+        out.other[rows] = t.other[rows] + offset
+        out.point[rows], out.normal[rows] = t.point[rows], t.normal[rows]
+        out.depth[rows], out.approach_speed[rows] = t.depth[rows], t.approach_speed[rows]
+    return out
+
+
+def _collision(system: System, state: FleetState, contact: Contact, world: World) -> Wrench:
+    """(B, 3) the obstacles' and the other boats' force and torque on each hull, body frames."""
+    b, fp = system.count, system.footprints
+    k = _kinematics(system, state, contact)
+    force, torque = np.zeros((b, 3)), np.zeros((b, 3))
+    if world.obstacles:
+        force, torque = collision_wrench(world, k.world, k.body, fp.owner, b, k.rotation,
+                                         k.center_of_mass, k.velocity, k.angular_velocity,
+                                         system.mass)
+    if b > 1:
+        pushed = hull_contact_wrench(world.contact, fp, k)
+        force, torque = force + pushed[0], torque + pushed[1]
+    return Wrench(force, torque)
+
+
+def _kinematics(system: System, state: FleetState, contact: Contact) -> BoatKinematics:
+    """Every boat's pose, motion and contact points (:attr:`System.footprints`)."""
+    from boat_dynamics.physics.body.owner_kernel import to_world_f64  # numba: when used
+
+    fp = system.footprints
+    rot = contact.rotation
+    ref = contact.position - np.einsum("bij,bj->bi", rot, system.center_of_mass)
+    return BoatKinematics(rot, ref, system.center_of_mass, state.velocity,
+                          state.angular_velocity, system.mass,
+                          to_world_f64(rot, ref, fp.owner, fp.points), fp.points, fp.starts)
 
 
 def _added_mass_at_speed(system: System, state: FleetState, rot: np.ndarray,

@@ -253,7 +253,7 @@ class Forces:
     ``total`` is the net wrench (the sources plus gravity) that the integrator uses;
     ``diffraction`` is zero for a boat without potential-flow coefficients, ``slamming`` for a
     hull without a slamming model or not slamming, ``mooring`` for a boat not moored, ``wind``
-    in calm air or for a boat without windage.
+    in calm air or for a boat without windage, ``collision`` for a boat touching no obstacle.
     """
 
     buoyancy: Wrench
@@ -265,6 +265,7 @@ class Forces:
     slamming: Wrench
     mooring: Wrench
     wind: Wrench
+    collision: Wrench
     gravity: Wrench
     total: Wrench
 

@@ -39,6 +39,7 @@ from boat_dynamics.physics.force_models.keel import reflect_off_keel
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy, panelled
 from boat_dynamics.physics.force_models.propulsion import lagged_throttle
 from boat_dynamics.physics.potential_flow.radiation import advance
+from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.errors import InvalidValueError
 from ocean_sim.physics.waves import WaveField, slope_orbit_velocity
@@ -220,7 +221,8 @@ def afloat(system: System, state: FleetState, sea: WaveField) -> FleetState:
 
 
 def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField, dt: float,
-         contact: Contact | None = None, environment: Environment | None = None) -> Step:
+         contact: Contact | None = None, environment: Environment | None = None,
+         world: World | None = None) -> Step:
     """Advance every boat by ``dt`` s (semi-implicit Euler), with one surface query.
 
     Args:
@@ -233,6 +235,7 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
             ``state`` computed it); None = computed here.
         environment: the current and the wind (:mod:`ocean_sim.physics.environment`), or
             None: neither.
+        world: the fixed obstacles (:mod:`boat_dynamics.physics.world`), or None: none.
 
     Returns:
         The state at t + dt, the forces that acted, the contact they came from and the
@@ -252,7 +255,7 @@ def step(system: System, state: FleetState, inputs: FleetInputs, sea: WaveField,
     elif not contact.belongs_to(system, state, sea):
         raise ValueError("contact: computed for another system, state or sea than the one "
                          "stepped")
-    acting, normals = forces(system, state, inputs, contact, environment)
+    acting, normals = forces(system, state, inputs, contact, environment, world)
     torque = acting.total.torque
     if system.special:  # control modes: rare, arcade
         torque = pd_torques(system, state, torque, normals, dt)

@@ -28,6 +28,7 @@ from boat_dynamics.physics.core.model import (
     BoatState,
     Forces,
     WaterVelocity,
+    hull_mesh,
 )
 from boat_dynamics.physics.force_models.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
@@ -37,6 +38,7 @@ from boat_dynamics.physics.force_models.rudder import Rudder
 from boat_dynamics.physics.potential_flow.hull_lift import HullLift
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.potential_flow.radiation import MAX_ORDER, RadiationMemory
+from boat_dynamics.physics.world.footprints import Footprints
 from ocean_sim.physics.waves import Precision
 
 __all__ = ["DIVERGED_RATE", "DIVERGED_SPEED", "ExcitationBatch", "FleetForces", "FleetInputs",
@@ -386,6 +388,7 @@ class System:
         lift: the boats' trailing sections stacked ((B, 2) kg/m a22, (B, 2, 3) m positions;
             zero for a boat without hull lift), or None when no boat has any
             (:mod:`.hull_lift`).
+        footprints: the hulls as contact sees them (obstacles, other boats).
     """
 
     params: tuple[BoatParams, ...]
@@ -418,6 +421,7 @@ class System:
     windage_centre: np.ndarray | None = None
     towed: tuple[int, ...] = ()
     lift: HullLift | None = None
+    footprints: Footprints | None = None
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -455,6 +459,7 @@ class System:
             **_windages(ps),
             towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
             lift=_lifts(ps),
+            footprints=Footprints.build([hull_mesh(p).vertices for p in ps]),
         )
 
 

@@ -28,6 +28,7 @@ from boat_dynamics.physics.scenario.specs import (
     ScenarioError,
     SimulationSettings,
 )
+from boat_dynamics.physics.scenario.world import world_block
 
 __all__ = [
     "DEFAULT_CRITICAL_RATIO",
@@ -135,10 +136,11 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     """
     check_bounded(data, source)
     d = mapping(data, "")
-    only(d, "", ("simulation", "ocean", "environment", "boats"))
+    only(d, "", ("simulation", "ocean", "environment", "world", "boats"))
     sim = simulation_block(d.get("simulation"))
     sea = ocean_block(d.get("ocean"), sim)
     environment = environment_block(d.get("environment"), sim.seed)
+    world = world_block(d.get("world"), sim)
     describe("boats", None, "a non-empty list of boats", default_doc="one default boat (a "
              "4 m x 2 m x 1 m box), with a warning")
     boats_raw = d.get("boats")
@@ -164,7 +166,8 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
                  f"{hull.length:g} m x {hull.beam:g} m x {hull.height:g} m box, {mass:,.0f} kg) "
                  "in the root namespace",)
     return Scenario(simulation=sim, sea=sea, boats=boats, source=source,
-                    environment=environment, notes=notes, digest=document_digest(d))
+                    environment=environment, world=world, notes=notes,
+                    digest=document_digest(d))
 
 
 def document_digest(data: Any) -> str:

@@ -11,6 +11,7 @@ import numpy as np
 from boat_dynamics.physics.core.commands import CommandScript
 from boat_dynamics.physics.core.model import BoatParams, BoatState
 from boat_dynamics.physics.sensors import Datum, SensorSpec
+from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.errors import InvalidValueError
@@ -133,7 +134,7 @@ class BoatSpec:
 
 @dataclass(frozen=True)
 class Scenario:
-    """A whole run: settings, the sea, the boats, and the current and wind.
+    """A whole run: settings, the sea, the boats, the current and wind, and the obstacles.
 
     ``notes``: what the reader assumed that the file did not say (a default boat for a file
     with no ``boats``), for the user to be told. ``digest``: 16 hex digits of the SHA-256 of
@@ -146,5 +147,6 @@ class Scenario:
     boats: tuple[BoatSpec, ...]
     source: str = "<scenario>"
     environment: Environment = field(default_factory=Environment)
+    world: World = field(default_factory=World)
     notes: tuple[str, ...] = ()
     digest: str = ""

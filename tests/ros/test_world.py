@@ -1,0 +1,77 @@
+"""The world over ROS 2: the obstacles drawn once (latched), a boat's contact events and push."""
+
+import numpy as np
+import pytest
+import yaml
+from support import cli_run, rrd_entities
+
+from boat_dynamics.tools.bags import read_bag
+
+#: A lone boat (root namespace) at full thrust toward a pier 6 m ahead of its bow, in calm
+#: water; a piling off to the side that it never touches.
+PIER = {"name": "pier", "type": "polygon", "top": 1.5,
+        "points": [[8.0, -10.0], [9.0, -10.0], [9.0, 10.0], [8.0, 10.0]]}
+WORLD = {"simulation": {"duration": 8.0},
+         "world": {"obstacles": [PIER, {"name": "pile", "type": "cylinder",
+                                        "center": [0.0, 15.0], "radius": 0.4}]},
+         "boats": [{"commands": [{"t": 0.0, "thrust": 1.0, "rudder": 0.0}]}]}
+
+
+def test_a_boat_driven_into_a_pier_reports_the_contact_and_the_world_is_drawn(boatsim, tmp_path):
+    path, bag = tmp_path / "pier.yaml", tmp_path / "bag"
+    path.write_text(yaml.safe_dump(WORLD))
+    sim = boatsim("run", str(path), "--fast", "--record", str(bag))
+    assert sim.wait(timeout=120) == 0, sim.output()
+    msgs = read_bag(bag, ["/world/markers", "/collision", "/wrench/collision", "/odom"])
+    (_, markers), = msgs["/world/markers"]  # once, latched
+    kinds = sorted((m.ns, m.id, m.type) for m in markers.markers)
+    assert kinds == [("obstacles", 0, 11), ("obstacles", 1, 3), ("obstacles", 100_000, 4)]
+    walls = next(m for m in markers.markers if m.type == 11)  # TRIANGLE_LIST: 4 walls x 6
+    assert len(walls.points) == 24 and walls.header.frame_id == "world"
+    assert max(p.z for p in walls.points) == 1.5
+    events = [m for _, m in msgs["/collision"]]
+    assert events, "no contact event"
+    first = events[0]
+    assert (first.other, first.touching, first.boat) == ("pier", True, "")
+    assert first.header.frame_id == "world"
+    assert first.normal.x == pytest.approx(-1.0) and first.approach_speed > 0.5
+    assert 8.0 <= first.point.x < 8.2
+    # a contact that begins ends before the next begins, with the same obstacle
+    assert [e.touching for e in events] == [k % 2 == 0 for k in range(len(events))]
+    assert {e.other for e in events} == {"pier"}
+    pushes = np.array([m.wrench.force.x for _, m in msgs["/wrench/collision"]])
+    assert pushes.min() < -1000.0 and np.all(pushes <= 1e-9)  # back, never forward
+    # the boat stays out of the pier: its reference point (the hull's middle) 2 m behind
+    # the bow, never past x = 8 - 2 + 0.2
+    assert max(m.pose.pose.position.x for _, m in msgs["/odom"]) < 6.2
+    # and `boatsim view` draws the obstacles from the bag
+    out = cli_run("view", str(bag), "--save", str(tmp_path / "v.rrd"))
+    assert out.returncode == 0, out.stderr
+    drawn = rrd_entities(tmp_path / "v.rrd")
+    assert {"/world/obstacles/obstacles/0", "/world/obstacles/obstacles/1",
+            "/world/obstacles/obstacles/100000"} <= drawn, drawn
+
+
+def test_two_boats_that_meet_report_each_other(boatsim, tmp_path):
+    # Bow to bow, 4 m apart, both at full thrust: each reports the other by name.
+    path, bag = tmp_path / "two.yaml", tmp_path / "bag"
+    thrust = [{"t": 0.0, "thrust": 1.0, "rudder": 0.0}]
+    path.write_text(yaml.safe_dump({
+        "simulation": {"duration": 6.0},
+        "boats": [{"name": "a", "commands": thrust},
+                  {"name": "b", "commands": thrust,
+                   "initial_pose": {"position": [8.0, 0.0, 0.0], "yaw_deg": 180.0}}]}))
+    sim = boatsim("run", str(path), "--fast", "--record", str(bag))
+    assert sim.wait(timeout=120) == 0, sim.output()
+    msgs = read_bag(bag, ["/a/collision", "/b/collision", "/a/odom", "/b/odom"])
+    a, b = ([m for _, m in msgs[f"/{n}/collision"]] for n in ("a", "b"))
+    assert a and b, "no contact event"
+    assert (a[0].boat, a[0].other, a[0].touching) == ("a", "b", True)
+    assert (b[0].boat, b[0].other, b[0].touching) == ("b", "a", True)
+    assert a[0].header.stamp == b[0].header.stamp
+    assert a[0].normal.x == pytest.approx(-1.0, abs=0.05)  # a is pushed back, b forward
+    assert b[0].normal.x == pytest.approx(1.0, abs=0.05)
+    # their reference points (the hulls' middles, 4 m long) never closer than 3.8 m
+    gap = [mb.pose.pose.position.x - ma.pose.pose.position.x
+           for (_, ma), (_, mb) in zip(msgs["/a/odom"], msgs["/b/odom"], strict=False)]
+    assert min(gap) > 3.8
