@@ -143,46 +143,68 @@ def touches_of(system: System, state: FleetState, contact: Contact, world: World
     b = system.count
     out = Touches(np.full(b, -1, dtype=np.intp), np.zeros((b, 3)), np.zeros((b, 2)),
                   np.zeros(b), np.zeros(b))
-    k, fp = _kinematics(system, state, contact), system.footprints
+    k = _kinematics(system, state, contact)
     found = []
     if world.obstacles:
-        found.append((0, touches(world, k.world, k.body, fp.owner, b, k.rotation,
-                                 k.center_of_mass, k.velocity, k.angular_velocity)))
+        near = _near_obstacles(world, system, k)
+        found.append((0, near, touches(world, *_world_points(system, k, near), near.shape[0],
+                                       k.rotation[near], k.center_of_mass[near],
+                                       k.velocity[near], k.angular_velocity[near])))
     if b > 1:
-        found.append((len(world.obstacles), hull_touches(fp, k)))
-    for offset, t in found:
-        rows = (t.other >= 0) & (t.depth > out.depth)
-        out.other[rows] = t.other[rows] + offset
-        out.point[rows], out.normal[rows] = t.point[rows], t.normal[rows]
-        out.depth[rows], out.approach_speed[rows] = t.depth[rows], t.approach_speed[rows]
+        found.append((len(world.obstacles), np.arange(b), hull_touches(system.footprints, k)))
+    for offset, rows, t in found:
+        deeper = (t.other >= 0) & (t.depth > out.depth[rows])
+        i = rows[deeper]
+        out.other[i] = t.other[deeper] + offset
+        out.point[i], out.normal[i] = t.point[deeper], t.normal[deeper]
+        out.depth[i], out.approach_speed[i] = t.depth[deeper], t.approach_speed[deeper]
     return out
 
 
 def _collision(system: System, state: FleetState, contact: Contact, world: World) -> Wrench:
     """(B, 3) the obstacles' and the other boats' force and torque on each hull, body frames."""
-    b, fp = system.count, system.footprints
+    b = system.count
     k = _kinematics(system, state, contact)
     force, torque = np.zeros((b, 3)), np.zeros((b, 3))
     if world.obstacles:
-        force, torque = collision_wrench(world, k.world, k.body, fp.owner, b, k.rotation,
-                                         k.center_of_mass, k.velocity, k.angular_velocity,
-                                         system.mass)
+        near = _near_obstacles(world, system, k)
+        if near.shape[0]:
+            force[near], torque[near] = collision_wrench(
+                world, *_world_points(system, k, near), near.shape[0], k.rotation[near],
+                k.center_of_mass[near], k.velocity[near], k.angular_velocity[near],
+                system.mass[near])
     if b > 1:
-        pushed = hull_contact_wrench(world.contact, fp, k)
+        pushed = hull_contact_wrench(world.contact, system.footprints, k)
         force, torque = force + pushed[0], torque + pushed[1]
     return Wrench(force, torque)
 
 
 def _kinematics(system: System, state: FleetState, contact: Contact) -> BoatKinematics:
     """Every boat's pose, motion and contact points (:attr:`System.footprints`)."""
-    from boat_dynamics.physics.body.owner_kernel import to_world_f64  # numba: when used
-
-    fp = system.footprints
     rot = contact.rotation
     ref = contact.position - np.einsum("bij,bj->bi", rot, system.center_of_mass)
     return BoatKinematics(rot, ref, system.center_of_mass, state.velocity,
-                          state.angular_velocity, system.mass,
-                          to_world_f64(rot, ref, fp.owner, fp.points), fp.points, fp.starts)
+                          state.angular_velocity, system.mass, system.footprints.points,
+                          system.footprints.starts)
+
+
+def _near_obstacles(world: World, system: System, k: BoatKinematics) -> np.ndarray:
+    """(N,) int, the boats whose footprint's circle reaches the obstacles' bounding box."""
+    x0, x1, y0, y1, _ = world.bounds()
+    r, p = system.footprints.radius, k.reference
+    return np.flatnonzero((p[:, 0] + r >= x0) & (p[:, 0] - r <= x1) & (p[:, 1] + r >= y0)
+                          & (p[:, 1] - r <= y1))
+
+
+def _world_points(system: System, k: BoatKinematics, boats: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``boats``' contact points: (E, 3) m world, (E, 3) m body, (E,) int owner in 0..N-1."""
+    parts = [k.points(int(i)) for i in boats]
+    owner = np.repeat(np.arange(len(parts)), [w.shape[0] for w, _ in parts])
+    if not parts:
+        return np.zeros((0, 3)), np.zeros((0, 3)), owner
+    return (np.concatenate([w for w, _ in parts]), np.concatenate([b for _, b in parts]),
+            owner)
 
 
 def _added_mass_at_speed(system: System, state: FleetState, rot: np.ndarray,

@@ -195,8 +195,7 @@ class BoatKinematics:
         velocity: (B, 3) m/s, body frames.
         angular_velocity: (B, 3) rad/s, body frames.
         mass: (B,) kg, rigid-body masses.
-        world: (E, 3) m, the contact points (:attr:`Footprints.points`), world frame.
-        body: (E, 3) m, the same, body frames.
+        body: (E, 3) m, the contact points (:attr:`Footprints.points`), body frames.
         starts: (B + 1,) int, boat b's points are rows starts[b] to starts[b + 1].
     """
 
@@ -206,14 +205,13 @@ class BoatKinematics:
     velocity: np.ndarray
     angular_velocity: np.ndarray
     mass: np.ndarray
-    world: np.ndarray
     body: np.ndarray
     starts: np.ndarray
 
     def points(self, boat: int) -> tuple[np.ndarray, np.ndarray]:
         """(n, 3) m world and (n, 3) m body positions of ``boat``'s contact points."""
-        lo, hi = self.starts[boat], self.starts[boat + 1]
-        return self.world[lo:hi], self.body[lo:hi]
+        body = self.body[self.starts[boat]:self.starts[boat + 1]]
+        return self.reference[boat] + body @ self.rotation[boat].T, body
 
 
 @dataclass(frozen=True)

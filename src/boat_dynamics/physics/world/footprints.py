@@ -21,6 +21,8 @@ __all__ = ["SPACING", "Footprints", "convex_hull", "near_pairs", "perimeter_poin
 
 #: m: the most the contact points round a hull are apart.
 SPACING = 0.25
+#: Fleets up to this size check every pair at once; larger ones sweep along x.
+_BRUTE_FORCE = 48
 
 
 @dataclass(frozen=True)
@@ -123,6 +125,11 @@ def near_pairs(xy: np.ndarray, radius: np.ndarray) -> np.ndarray:
         xy: (B, 2) m, the reference points, world frame.
         radius: (B,) m, each footprint's circle.
     """
+    if xy.shape[0] <= _BRUTE_FORCE:  # every pair at once: fewer numpy calls
+        d = xy[:, None, :] - xy[None, :, :]
+        reach = radius[:, None] + radius[None, :]
+        i, j = np.nonzero(np.triu(d[..., 0] ** 2 + d[..., 1] ** 2 <= reach * reach, k=1))
+        return np.stack([i, j], axis=1)
     order = np.argsort(xy[:, 0], kind="stable")
     x = xy[order, 0]
     reach = x + radius[order] + radius.max()
