@@ -22,7 +22,7 @@ ARGS ?=
 
 # Then the physics core's compiled kernels: compiled once into the cache every process finds
 # (ocean_sim/physics/jit.py; loaded in about a second when warm).
-setup: $(VENV)/.msgs-built $(VENV)/.deps-installed
+setup: $(VENV)/.msgs-built $(VENV)/.deps-installed $(VENV)/.gym-installed
 	@OPENBLAS_NUM_THREADS=1 $(VPY) -c "from ocean_sim.physics.jit import cache_dir; \
 	  from boat_dynamics.physics.kernels import warm; \
 	  print(f'boatsim: compiled kernels ready in {warm():.1f} s (cache {cache_dir()})')"
@@ -65,8 +65,14 @@ $(VENV)/.msgs-built: $(foreach p,$(MSG_PKGS),$(VENV)/.msgs-$(p))
 run: setup
 	$(VENV)/bin/boatsim run $(ARGS)
 
-# `boatsim view` needs the view extra (Rerun), installed on first use.
-$(VENV)/.view-installed: $(VENV)/.deps-installed requirements/view.txt
+# The gym extra (boat_dynamics.gym, Gymnasium; small): with every set-up, so its tests run.
+$(VENV)/.gym-installed: $(VENV)/.deps-installed requirements/gym.txt
+	$(PIP) -r requirements/gym.txt
+	@touch $@
+
+# `boatsim view` needs the view extra (Rerun), installed on first use (after the gym extra:
+# one pip at a time).
+$(VENV)/.view-installed: $(VENV)/.gym-installed requirements/view.txt
 	$(PIP) -r requirements/view.txt
 	@touch $@
 

@@ -95,13 +95,25 @@ def test_importing_the_physics_core_loads_no_ros():
     assert out.stdout.strip() == ""
 
 
+def test_the_gymnasium_environments_import_no_ros():
+    """boat_dynamics.gym is an adapter over the physics core for learning loops: no ROS."""
+    assert _violations((SRC / "boat_dynamics" / "gym.py").read_text(encoding="utf-8")) == []
+    code = ("import sys, boat_dynamics.gym\n"
+            f"print(','.join(sorted(m for m in sys.modules if m.split('.')[0] in "
+            f"{sorted(FORBIDDEN)!r})))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == ""
+
+
 def test_boat_dynamics_has_only_the_layers_at_its_top():
     top = sorted(p.name for p in (SRC / "boat_dynamics").iterdir()
                  if p.name != "__pycache__")
     # bags.py: the deprecated alias of tools/bags.py (CHANGES.md, "Changes to the contract");
     # data: package data (coefficient files), no code
-    assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "data", "physics", "ros",
-                   "tools"]
+    # gym.py: Gymnasium environments, an adapter over the physics core without ROS (below)
+    assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "data", "gym.py",
+                   "physics", "ros", "tools"]
     assert not list((SRC / "boat_dynamics" / "data").rglob("*.py"))
 
 
