@@ -80,12 +80,14 @@ SAMPLE_SURFACE = "/ocean/sample_surface"
 #: sensor_msgs/PointCloud2 of the surface around the boats, for viewers (RViz, Foxglove).
 SURFACE_CLOUD = "/ocean/surface"
 CLOCK = "/clock"
-#: std_msgs/Float64MultiArray [T, n]: a replayer's grant "advance while t < T; I have sent n
-#: command messages" (``boatsim run --fast --lockstep`` obeys it).
+#: std_msgs/Float64MultiArray [T, n]: a lockstep client's grant "advance while t < T; I have
+#: sent n command messages" (``boatsim run --fast --lockstep`` obeys it, from any node:
+#: ``boatsim replay`` or a client of any name, docs/DESIGN.md "Lockstep: the client's recipe").
 LOCKSTEP = "/boatsim/lockstep"
 #: std_msgs/String "NODE TOPIC ...": a lockstep dynamics node's word that its subscriptions
-#: to these command topics have matched the replayer's (``REPLAY_NODE``'s) publishers, said
-#: every 0.1 s (wall) while it holds. A replayer sends no command before: a command
+#: to these command topics have matched the publishers of every lockstep client publishing
+#: them (each node that publishes ``LOCKSTEP``, and ``REPLAY_NODE``), said every 0.1 s (wall)
+#: while it holds. A client sends no command before: a command
 #: published before the subscription has matched the publisher is lost, and the simulation
 #: would wait for it for ever.
 LOCKSTEP_READY = "/boatsim/lockstep_ready"

@@ -71,7 +71,8 @@ from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
 from ocean_sim.physics.environment import Environment
 from ocean_sim.physics.waves import InvalidSeaStateError, WaveField
 
-__all__ = ["DynamicsNode", "LockstepRole", "SimClock", "StartInterrupted", "advertises_wrenches"]
+__all__ = ["DynamicsNode", "LockstepRole", "SimClock", "StartInterrupted", "advertises_wrenches",
+           "ready_topics"]
 
 #: How a dynamics node takes part in a lockstep replay (see :class:`DynamicsNode`).
 LockstepRole = Literal["follow", "announce", "none"]
@@ -160,6 +161,22 @@ def _log_at(log, level: str, text: str) -> None:
         log.info(text)
     else:
         raise ValueError(f"log level {level!r}: 'info' or 'warning'")
+
+
+def ready_topics(seen: set[tuple[str, str, str]], before: set[tuple[str, str, str]]
+                 ) -> set[str]:
+    """The command topics a lockstep node may say it has matched (``announce_matches``).
+
+    Args:
+        seen: (client node, namespace, topic) of each command topic the graph shows a
+            lockstep client publishing now.
+        before: the same, at the previous look.
+
+    Returns:
+        The topics every client that publishes them was seen publishing at both looks.
+    """
+    fresh = {topic for *_, topic in seen - before}
+    return {topic for *_, topic in seen} - fresh
 
 
 class DynamicsNode(Node):
@@ -280,8 +297,9 @@ class DynamicsNode(Node):
         self.granted_until = 0.0  # lockstep: may step while t < this ...
         self.granted_commands = 0  # ... once this many commands have arrived
         self._lockstep_sub = None  # before the boats' command subscriptions (see lockstep)
-        self._ready_pub = None  # lockstep: the word that the replayer's commands will arrive
-        self._replay_topics: set[str] = set()  # the replayer's, seen at the last announcement
+        self._ready_pub = None  # lockstep: the word that the clients' commands will arrive
+        # (client node, namespace, command topic) seen published at the last announcement
+        self._client_topics: set[tuple[str, str, str]] = set()
         self._next_announcement = 0.0
         if lockstep != "none":
             self._lockstep_sub = self.create_subscription(
@@ -534,12 +552,14 @@ class DynamicsNode(Node):
         self.granted_commands = max(self.granted_commands, commands)
 
     def announce_matches(self) -> None:
-        """Lockstep, while holding: say which of the replayer's topics the boats have matched.
+        """Lockstep, while holding: say which of the clients' topics the boats have matched.
 
-        On ``names.LOCKSTEP_READY``, at most every 0.1 s (wall).
-        A topic counts once this node's graph has shown the replayer publishing it at two
-        announcements in a row: DDS matches a subscription to a publisher as it learns of the
-        publisher, which the graph shows, and the second look leaves 0.1 s for that. (A
+        On ``names.LOCKSTEP_READY``, at most every 0.1 s (wall). The clients: every node that
+        publishes ``names.LOCKSTEP`` (whatever its name: ``boatsim replay``, a test harness,
+        a learning loop), and ``boatsim replay``'s node by its name. A command topic counts
+        once this node's graph has shown each client that publishes it doing so at two
+        announcements in a row: DDS matches a subscription to a publisher as it learns of
+        the publisher, which the graph shows, and the second look leaves 0.1 s for that. (A
         publisher that has matched a subscription may still be unknown to the subscription,
         and what it publishes meanwhile is lost; the replayer saw its subscribers and sent at
         once, and a lockstep simulation then waited for a lost command for ever.)
@@ -548,14 +568,25 @@ class DynamicsNode(Node):
         if self._ready_pub is None or now < self._next_announcement:
             return
         self._next_announcement = now + 0.1
-        try:
-            published = self.get_publisher_names_and_types_by_node(names.REPLAY_NODE, "/")
-        except RuntimeError:  # NodeNameNonExistentError: no replayer on the graph
-            published = []
-        seen = {topic for topic, _ in published} & self._command_topics
-        matched, self._replay_topics = seen & self._replay_topics, seen
+        seen = set()
+        for client, namespace in self._lockstep_clients():
+            try:
+                published = self.get_publisher_names_and_types_by_node(client, namespace)
+            except RuntimeError:  # NodeNameNonExistentError: gone from the graph meanwhile
+                continue
+            seen |= {(client, namespace, topic) for topic, _ in published
+                     if topic in self._command_topics}
+        matched = ready_topics(seen, self._client_topics)
+        self._client_topics = seen
         if matched:
             self._ready_pub.publish(String(data=" ".join([self.get_name(), *sorted(matched)])))
+
+    def _lockstep_clients(self) -> set[tuple[str, str]]:
+        """(name, namespace) of the nodes publishing grants, and ``boatsim replay``'s node."""
+        clients = {(i.node_name, i.node_namespace)
+                   for i in self.get_publishers_info_by_topic(names.LOCKSTEP)
+                   if i.node_name not in ("", names.UNKNOWN_NODE)}  # not discovered yet
+        return clients | {(names.REPLAY_NODE, "/")}  # looked up even before its grants
 
     def repeat_clock(self) -> None:
         """Republish /clock at the current time (lockstep hold: late joiners see it), unrecorded."""

@@ -4,7 +4,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from boat_dynamics.ros.node import SimClock, advertises_wrenches
+from boat_dynamics.ros.node import SimClock, advertises_wrenches, ready_topics
 from boat_msgs_py.cdr import stamp_parts
 
 
@@ -35,3 +35,15 @@ def test_stamps_are_integer_nanoseconds_a_step_apart_whatever_the_wall_clock_epo
     sec, nanosec = clock.stamp()
     assert sec * 10**9 + nanosec == clock.stamp_ns() and 0 <= nanosec < 10**9
     assert stamp_parts(start / rate_hz, epoch) == divmod(stamps[0], 10**9)
+
+
+def test_a_topic_is_ready_once_every_lockstep_client_publishing_it_was_seen_twice():
+    a, b = ("harness", "/"), ("boatsim_replay", "/")
+    first = {(*a, "/cmd_thrust")}
+    assert ready_topics(first, set()) == set()  # seen once: DDS may not have matched yet
+    second = first | {(*a, "/cmd_rudder"), (*b, "/cmd_thrust")}
+    # /cmd_thrust: a second client publishes it now, seen once; /cmd_rudder: new
+    assert ready_topics(second, first) == set()
+    assert ready_topics(second, second) == {"/cmd_thrust", "/cmd_rudder"}
+    # a client gone from the graph: what the others publish stays ready
+    assert ready_topics({(*a, "/cmd_rudder")}, second) == {"/cmd_rudder"}
