@@ -296,7 +296,8 @@ class _Live:
 
         from boat_msgs_py.qos import WORLD_QOS
 
-        node.create_subscription(MarkerArray, names.WORLD_MARKERS, scene.markers, WORLD_QOS)
+        node.create_subscription(MarkerArray, names.WORLD_MARKERS,
+                                 lambda msg: self.scene.markers(msg), WORLD_QOS)
 
     def _on_field(self, msg) -> None:
         from boat_msgs_py.convert import wave_field_from_msg
