@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["MIN_RESTITUTION", "ContactParams", "Cylinder", "Obstacle", "Prism", "World",
-           "penetration", "restitution_of", "signed_area"]
+           "inside_polygon", "penetration", "restitution_of", "signed_area"]
 
 
 @dataclass(frozen=True)
@@ -195,17 +195,25 @@ def _in_prism(prism: Prism, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(N,) depth inside ``prism`` (0 outside) and (N, 2) the outward normal of the way out."""
     a, e, n = prism.edges()
     rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
-    # crossing number: edges straddling the point's y, crossed to its right
-    y0, y1 = a[None, :, 1], a[None, :, 1] + e[None, :, 1]
-    straddle = (y0 <= xy[:, None, 1]) != (y1 <= xy[:, None, 1])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cross_x = a[None, :, 0] + (xy[:, None, 1] - y0) / e[None, :, 1] * e[None, :, 0]
-    inside = np.count_nonzero(straddle & (xy[:, None, 0] < cross_x), axis=1) % 2 == 1
+    inside = inside_polygon(prism.points, xy)
     t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)
     dist = np.hypot(*np.moveaxis(rel - t[..., None] * e[None], -1, 0))  # (N, P)
     way = np.argmin(dist, axis=1)
     depth = np.where(inside, dist[np.arange(xy.shape[0]), way], 0.0)
     return depth, np.where(inside[:, None], n[way], 0.0)
+
+
+def inside_polygon(points: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """(N,) bool: each of ``xy`` (N, 2) inside the polygon ``points`` (P, 2).
+
+    The crossing number: the edges straddling the point's y that cross its line to its right.
+    """
+    a, e = points, np.roll(points, -1, axis=0) - points
+    y0, y1 = a[None, :, 1], a[None, :, 1] + e[None, :, 1]
+    straddle = (y0 <= xy[:, None, 1]) != (y1 <= xy[:, None, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):  # level edges: never straddle
+        cross_x = a[None, :, 0] + (xy[:, None, 1] - y0) / e[None, :, 1] * e[None, :, 0]
+    return np.count_nonzero(straddle & (xy[:, None, 0] < cross_x), axis=1) % 2 == 1
 
 
 def _in_cylinder(cylinder: Cylinder, xy: np.ndarray, velocity: np.ndarray

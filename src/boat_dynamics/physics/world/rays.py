@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from boat_dynamics.physics.world.footprints import Footprints
-from boat_dynamics.physics.world.obstacles import Cylinder, Prism, World
+from boat_dynamics.physics.world.obstacles import Cylinder, Prism, World, inside_polygon
 
 __all__ = ["cast", "hull_ranges", "obstacle_ranges", "water_range"]
 
@@ -58,7 +58,7 @@ def _prism(prism: Prism, o: np.ndarray, d: np.ndarray) -> np.ndarray:
         z = o[:, None, 2] + t * d[:, None, 2]
     wall = np.where((t > 0.0) & (s >= 0.0) & (s <= 1.0) & (z <= prism.top) & (det != 0.0),
                     t, np.inf).min(axis=1)
-    return np.minimum(wall, _top(prism.top, o, d, lambda xy: _inside_polygon(prism.points, xy)))
+    return np.minimum(wall, _top(prism.top, o, d, lambda xy: inside_polygon(prism.points, xy)))
 
 
 def _cylinder(cylinder: Cylinder, o: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -86,16 +86,6 @@ def _top(height: float, o: np.ndarray, d: np.ndarray, inside) -> np.ndarray:
     down = (d[:, 2] < 0.0) & (o[:, 2] > height) & np.isfinite(t)
     xy = o[:, :2] + np.where(down, t, 0.0)[:, None] * d[:, :2]
     return np.where(down & inside(xy), t, np.inf)
-
-
-def _inside_polygon(points: np.ndarray, xy: np.ndarray) -> np.ndarray:
-    """(N,) bool: ``xy`` (N, 2) inside the polygon ``points`` (P, 2) (crossing number)."""
-    a, b = points, np.roll(points, -1, axis=0)
-    straddle = (a[None, :, 1] <= xy[:, None, 1]) != (b[None, :, 1] <= xy[:, None, 1])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cross = a[None, :, 0] + ((xy[:, None, 1] - a[None, :, 1]) / (b - a)[None, :, 1]
-                                 * (b - a)[None, :, 0])
-    return np.count_nonzero(straddle & (xy[:, None, 0] < cross), axis=1) % 2 == 1
 
 
 def hull_ranges(footprints: Footprints, rotation: np.ndarray, reference: np.ndarray,
