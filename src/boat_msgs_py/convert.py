@@ -22,11 +22,16 @@ from geometry_msgs.msg import (
     WrenchStamped,
 )
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import Imu, NavSatFix, NavSatStatus
+from sensor_msgs.msg import Imu, MagneticField, NavSatFix, NavSatStatus
 from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 
-from boat_dynamics.physics.sensors import GnssReading, ImuReading, OdometryReading
+from boat_dynamics.physics.sensors import (
+    GnssReading,
+    ImuReading,
+    MagnetometerReading,
+    OdometryReading,
+)
 from boat_msgs_py.cdr import stamp_parts
 from boat_msgs_py.names import WORLD_FRAME
 from ocean_sim.physics.environment import Environment, Wind
@@ -40,6 +45,7 @@ __all__ = [
     "gnss_velocity",
     "imu",
     "lockstep_grant",
+    "magnetic_field",
     "nav_sat_fix",
     "noisy_odometry",
     "odometry",
@@ -189,6 +195,12 @@ def imu(stamp: Time, frame: str, reading: ImuReading) -> Imu:
                angular_velocity_covariance=_cov9(reading.angular_velocity_covariance),
                linear_acceleration=_vec(reading.linear_acceleration),
                linear_acceleration_covariance=_cov9(reading.linear_acceleration_covariance))
+
+
+def magnetic_field(stamp: Time, frame: str, reading: MagnetometerReading) -> MagneticField:
+    """sensor_msgs/MagneticField of a reading: T, the sensor's frame; covariance T^2."""
+    return MagneticField(header=_header(stamp, frame), magnetic_field=_vec(reading.field),
+                         magnetic_field_covariance=_cov9(reading.covariance))
 
 
 def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading, fix: bool = True) -> NavSatFix:

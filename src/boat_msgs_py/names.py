@@ -48,6 +48,7 @@ __all__ = [
     "gnss_vel_topic",
     "imu_topic",
     "is_command_topic",
+    "sensor_data_topic",
     "sensor_frame",
     "thruster_topic",
     "wrench_topic",
@@ -164,6 +165,11 @@ def sensor_frame(boat: str, sensor: str) -> str:
 
 def imu_topic(boat: str, sensor: str) -> str:
     """sensor_msgs/Imu of an IMU named ``sensor``: ``<boat>/<sensor>/data``."""
+    return boat_topic(boat, f"{sensor}/data")
+
+
+def sensor_data_topic(boat: str, sensor: str) -> str:
+    """A magnetometer's or depth sounder's readings: ``<boat>/<sensor>/data``."""
     return boat_topic(boat, f"{sensor}/data")
 
 

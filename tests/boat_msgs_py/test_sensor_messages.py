@@ -9,11 +9,12 @@ import pytest
 import tf2_msgs
 from rosbags.typesys import Stores, get_typestore
 
-from boat_dynamics.physics.sensors import GnssReading, ImuReading
+from boat_dynamics.physics.sensors import GnssReading, ImuReading, MagnetometerReading
 from boat_msgs_py.convert import (
     UNMEASURED_VARIANCE,
     gnss_velocity,
     imu,
+    magnetic_field,
     nav_sat_fix,
     seconds_to_time,
     tf_message,
@@ -60,6 +61,14 @@ def test_transforms_imu_and_fix_carry_the_readings():
     lost = nav_sat_fix(stamp, "alpha/gnss_link", fix, fix=False)  # an outage
     assert lost.status.status == -1 and lost.position_covariance_type == 0  # NO_FIX, UNKNOWN
     assert math.isnan(lost.latitude) and math.isnan(lost.longitude)
+
+
+def test_a_magnetic_field_message_carries_tesla_in_the_sensor_frame():
+    reading = MagnetometerReading(np.array([2.3e-5, 1e-7, -4.1e-5]), np.eye(3) * 1e-14)
+    m = magnetic_field(seconds_to_time(2.0), "alpha/compass_link", reading)
+    assert m.header.frame_id == "alpha/compass_link" and m.header.stamp.sec == 2
+    assert (m.magnetic_field.x, m.magnetic_field.y, m.magnetic_field.z) == (2.3e-5, 1e-7, -4.1e-5)
+    assert list(m.magnetic_field_covariance) == [1e-14, 0, 0, 0, 1e-14, 0, 0, 0, 1e-14]
 
 
 def test_thruster_topics_are_commands_a_replay_republishes():

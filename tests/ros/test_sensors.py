@@ -38,24 +38,26 @@ def _scenario(tmp_path, seed=3, publish_tf=True, waves=False, imu=IMU):
     return path
 
 
-def _messages(bag):
-    """{topic: [(stamp ns, message)]} of a bag."""
+def _messages(bag, types=None):
+    """{topic: [(stamp ns, message)]} of a bag (and into ``types``, {topic: type name})."""
     from rosbags.highlevel import AnyReader
 
     out = {}
     with AnyReader([bag]) as reader:
         for conn, stamp, raw in reader.messages():
             out.setdefault(conn.topic, []).append((stamp, reader.deserialize(raw, conn.msgtype)))
+            if types is not None:
+                types[conn.topic] = conn.msgtype
     return out
 
 
-def _run(boatsim, tmp_path, scenario, seconds, name):
+def _run(boatsim, tmp_path, scenario, seconds, name, types=None):
     bag = tmp_path / name
     sim = boatsim("run", str(scenario), "--fast", "--duration", str(seconds), "--record",
                   str(bag))
     assert sim.wait(timeout=180) == 0, sim.output()
     assert "Traceback" not in sim.output()
-    return _messages(bag)
+    return _messages(bag, types)
 
 
 def _vec(v):
@@ -197,3 +199,41 @@ def test_the_same_seed_gives_the_same_sensor_readings_and_tf_can_be_left_out(boa
     assert readings(first) == readings(again)
     assert readings(first)["/alpha/imu/data"] != readings(other)["/alpha/imu/data"]
     assert "/tf" in first and "/tf" not in again
+
+
+def test_a_magnetometer_publishes_the_earth_field_in_its_frame(boatsim, tmp_path):
+    """sensor_msgs/MagneticField on <name>/data, tesla, in <boat>/<name>_link: the datum's
+    field turned into the body's axes by odom's attitude, plus its hard iron, within its
+    noise; the heading of the level boat follows from it."""
+    sigma, hard = 1e-7, [2e-6, 0.0, 0.0]
+    mag = {"type": "magnetometer", "name": "compass", "rate_hz": 25, "position": [1.0, 0, 1.5],
+           "noise": {"sigma": sigma, "hard_iron": hard}}
+    path = tmp_path / "magnetometer.yaml"
+    path.write_text(yaml.safe_dump({
+        "simulation": {"seed": 3, "datum": DATUM, "magnetic_field": {
+            "declination_deg": 4.0, "inclination_deg": 60.0, "intensity_nT": 47000}},
+        "boats": [{"name": "alpha", "initial_pose": {"yaw_deg": 30.0}, "sensors": [mag]}]}))
+    types = {}
+    msgs = _run(boatsim, tmp_path, path, 2, "bag", types)
+    assert types["/alpha/compass/data"] == "sensor_msgs/msg/MagneticField"
+    readings = msgs["/alpha/compass/data"]
+    assert len(readings) == 50  # 25 Hz, t = 0.04 .. 2.0 s (odom: every 0.02 s)
+    odom = {stamp: m for stamp, m in msgs["/alpha/odom"]}
+    d, i, f = math.radians(4.0), math.radians(60.0), 47000e-9
+    world = f * np.array([math.cos(i) * math.sin(d), math.cos(i) * math.cos(d), -math.sin(i)])
+    errors, headings = [], []
+    for stamp, m in readings:
+        assert m.header.frame_id == "alpha/compass_link"
+        q = _quat(odom[stamp].pose.pose.orientation)
+        field = _vec(m.magnetic_field)
+        errors.append(field - (rotation_matrix(q).T @ world + hard))
+        corrected = field - hard
+        headings.append(math.pi / 2 - d - math.atan2(corrected[1], corrected[0]))
+    assert np.abs(errors).max() < 4.5 * sigma and np.abs(errors).max() > 0.1 * sigma
+    np.testing.assert_allclose(np.reshape(readings[0][1].magnetic_field_covariance, (3, 3)),
+                               np.eye(3) * sigma**2)
+    # the boat floats level at its initial yaw: 30 deg within the noise's angle
+    # (sigma / (F cos I) = 4e-3 rad)
+    assert np.abs(np.degrees(headings) - 30.0).max() < 4.5 * math.degrees(sigma / (f * 0.5))
+    (_, static), = msgs["/tf_static"]
+    assert [t.child_frame_id for t in static.transforms] == ["alpha/compass_link"]

@@ -1,4 +1,4 @@
-"""The sensors and transforms a dynamics node publishes: /tf, /tf_static, IMU and GNSS.
+"""The sensors and transforms a dynamics node publishes: /tf, /tf_static and every sensor.
 
 A thin adapter over :mod:`boat_dynamics.physics.sensors`: each sensor's noise state is kept
 here between readings (the core's ``measure_*`` returns it), its stream keyed by the scenario
@@ -13,7 +13,7 @@ import numpy as np
 from geometry_msgs.msg import TwistWithCovarianceStamped
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
-from sensor_msgs.msg import Imu, NavSatFix
+from sensor_msgs.msg import Imu, MagneticField, NavSatFix
 from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.body.rigid_body import rotation_matrix
@@ -24,6 +24,7 @@ from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
 from boat_dynamics.physics.sensors import (
     GnssSpec,
     ImuSpec,
+    MagnetometerSpec,
     OdometrySpec,
     SensorSpec,
     dropped,
@@ -32,13 +33,21 @@ from boat_dynamics.physics.sensors import (
     imu_start,
     measure_gnss,
     measure_imu,
+    measure_magnetometer,
     measure_odometry,
     stream_key,
     true_motion,
 )
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
-from boat_msgs_py.convert import gnss_velocity, imu, nav_sat_fix, noisy_odometry, tf_message
+from boat_msgs_py.convert import (
+    gnss_velocity,
+    imu,
+    magnetic_field,
+    nav_sat_fix,
+    noisy_odometry,
+    tf_message,
+)
 from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 
@@ -52,7 +61,7 @@ class _Sensor:
     boat: BoatSpec
     spec: SensorSpec
     key: np.ndarray
-    state: object  # ImuState | GnssState
+    state: object  # ImuState | GnssState, or an int: the readings of a white-noise sensor
     pubs: list[TappedPublisher]
     frame: str
 
@@ -133,7 +142,7 @@ class SensorPublisher:
         """Every sensor's noise state, as arrays (:mod:`boat_dynamics.physics.core.snapshot`)."""
         out: dict[str, np.ndarray] = {"sensors": np.array(self._names(), dtype=str)}
         for k, (_, sensor) in enumerate(self._sensors):
-            if isinstance(sensor.state, int):  # an odometry sensor: its reading count
+            if isinstance(sensor.state, int):  # white noise only: its reading count
                 out[f"sensor{k}.count"] = np.asarray(sensor.state)
             else:
                 out.update(flatten(sensor.state, f"sensor{k}."))
@@ -182,6 +191,8 @@ class SensorPublisher:
                           send)
             elif isinstance(sensor.spec, GnssSpec):
                 self._gnss(sensor, stamp, center_of_mass[index], now[index], send)
+            elif isinstance(sensor.spec, MagnetometerSpec):
+                self._magnetometer(sensor, stamp, now[index], send)
             else:
                 self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
@@ -209,6 +220,13 @@ class SensorPublisher:
         if send and fix:
             sensor.pubs[1].publish(gnss_velocity(stamp, reading))
 
+    def _magnetometer(self, sensor: _Sensor, stamp, after: BoatState, send: bool) -> None:
+        reading = measure_magnetometer(sensor.spec, sensor.key, sensor.state,
+                                       self._sim.magnetic_field, after.orientation)
+        sensor.state += 1
+        if send:
+            sensor.pubs[0].publish(magnetic_field(stamp, sensor.frame, reading))
+
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
                   send: bool) -> None:
         rot = rotation_matrix(after.orientation)
@@ -223,7 +241,7 @@ class SensorPublisher:
 
 def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None
                 ) -> tuple[list[TappedPublisher], object]:
-    """A sensor's publishers and its first noise state (an odometry: its sample count)."""
+    """A sensor's publishers and its first noise state (white noise only: its sample count)."""
     if isinstance(spec, ImuSpec):
         return ([TappedPublisher(node, Imu, names.imu_topic(boat, spec.name), SENSOR_QOS,
                                  tap)], imu_start(spec, key))
@@ -233,5 +251,8 @@ def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: T
                  TappedPublisher(node, TwistWithCovarianceStamped,
                                  names.gnss_vel_topic(boat, spec.name), SENSOR_QOS, tap)],
                 gnss_start(spec, key))
+    if isinstance(spec, MagnetometerSpec):
+        return ([TappedPublisher(node, MagneticField, names.sensor_data_topic(boat, spec.name),
+                                 SENSOR_QOS, tap)], 0)
     return ([TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS,
                              tap)], 0)

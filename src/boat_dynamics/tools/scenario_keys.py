@@ -45,7 +45,8 @@ def _boat(**keys) -> dict:
 #: Scenarios that, together, take every branch of the reader (key: what each exercises).
 EXERCISES: dict[str, dict] = {
     "everything simple": {
-        "simulation": {"rate_hz": 100, "duration": 10.0, "substeps": 2, "seed": 3},
+        "simulation": {"rate_hz": 100, "duration": 10.0, "substeps": 2, "seed": 3,
+                       "magnetic_field": {"declination_deg": 1.0}},
         "ocean": {"depth": 50.0, "components": [{"amplitude": 0.3, "wavelength": 25.0}],
                   "spectrum": {"type": "jonswap", "significant_height": 1.0}},
         "environment": {"current": {"speed": 0.5}, "wind": {"speed": 8.0, "gusts": "norsok"}},
@@ -67,7 +68,9 @@ EXERCISES: dict[str, dict] = {
             windage={"frontal_area": 1.0, "lateral_area": 2.0},
             initial_pose={"position": [0.0, 0.0, 0.0]},
             commands=[{"t": 0.0, "thrust": 0.5, "rudder": 0.1}],
-            sensors=[{"type": "imu"}, {"type": "gnss"}, {"type": "odometry"}])],
+            sensors=[{"type": "imu"}, {"type": "gnss"}, {"type": "odometry"},
+                     {"type": "magnetometer",
+                      "noise": {"soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}}])],
     },
     "a beaufort sea, a mesh hull with coefficients, sample points, named thrusters": {
         "ocean": {"spectrum": {"beaufort": 4, "spreading": None}},

@@ -14,7 +14,7 @@ from boat_dynamics.physics.scenario.read import (
     number,
     only,
 )
-from boat_dynamics.physics.scenario.sensors import datum_block
+from boat_dynamics.physics.scenario.sensors import datum_block, magnetic_field_block
 from boat_dynamics.physics.scenario.specs import (
     WRENCH_TOPICS,
     ScenarioError,
@@ -45,7 +45,8 @@ def simulation_block(raw: Any) -> SimulationSettings:
     d = mapping(raw, key)
     only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
                    "seed", "gravity", "water_density", "cmd_timeout", "substeps",
-                   "wave_precision", "datum", "publish_tf", "wrench_topics", "fleet_state"))
+                   "wave_precision", "datum", "magnetic_field", "publish_tf", "wrench_topics",
+                   "fleet_state"))
     rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz",
                  range_doc="(0, rate_hz] Hz")
@@ -72,6 +73,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
         substeps=substeps,
         wave_precision=choice(d, "wave_precision", key, DEFAULT_PRECISION, PRECISIONS),
         datum=datum_block(d.get("datum")),
+        magnetic_field=magnetic_field_block(d.get("magnetic_field")),
         publish_tf=flag(d, "publish_tf", key, True),
         wrench_topics=choice(d, "wrench_topics", key, "auto", WRENCH_TOPICS),
         fleet_state=flag(d, "fleet_state", key, False),

@@ -1,4 +1,4 @@
-"""The ``sensors`` list of a boat and the ``simulation.datum`` block."""
+"""The ``sensors`` list of a boat, the ``simulation.datum`` and ``magnetic_field`` blocks."""
 
 from __future__ import annotations
 
@@ -21,20 +21,25 @@ from boat_dynamics.physics.scenario.read import (
 from boat_dynamics.physics.scenario.specs import ScenarioError
 from boat_dynamics.physics.sensors import (
     Datum,
+    EarthField,
     GnssNoise,
     GnssSpec,
     ImuSpec,
     InertialNoise,
+    MagnetometerSpec,
     OdometryNoise,
     OdometrySpec,
     SensorSpec,
 )
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
 
-__all__ = ["MAX_MOUNT", "SENSOR_TYPES", "datum_block", "sensors_block"]
+__all__ = ["MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_field_block",
+           "sensors_block"]
 
 #: The ``type`` of a sensor.
-SENSOR_TYPES = ("imu", "gnss", "odometry")
+SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer")
+#: Hz, each type's default ``rate_hz``.
+_RATES = {"imu": 100.0, "gnss": 5.0, "odometry": 50.0, "magnetometer": 20.0}
 
 
 def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
@@ -51,6 +56,26 @@ def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
         altitude=number(d, "altitude", key, 0.0, -1000.0, 10000.0, unit="m"))
 
 
+def magnetic_field_block(raw: Any, key: str = "simulation.magnetic_field") -> EarthField:
+    """``{declination_deg, inclination_deg, intensity_nT}``: the Earth's field at the datum.
+
+    As a world magnetic model's calculator gives it (NOAA's WMM: D, I, F); the default is
+    WMM2025's at the default datum (:class:`EarthField`).
+    """
+    d = mapping(raw, key)
+    only(d, key, ("declination_deg", "inclination_deg", "intensity_nT"))
+    default = EarthField()
+    return EarthField(
+        declination=math.radians(number(d, "declination_deg", key,
+                                        round(math.degrees(default.declination), 2),
+                                        -180.0, 180.0, unit="deg, east of true north")),
+        inclination=math.radians(number(d, "inclination_deg", key,
+                                        round(math.degrees(default.inclination), 2),
+                                        -90.0, 90.0, unit="deg, below the horizontal")),
+        intensity=1e-9 * number(d, "intensity_nT", key, round(default.intensity * 1e9), 0.0,
+                                1e6, unit="nT"))
+
+
 #: m, the farthest a sensor may be mounted from the hull reference point, per axis (a GNSS
 #: mounted 1e300 m away gave NaN fixes).
 MAX_MOUNT = 1000.0
@@ -59,7 +84,8 @@ MAX_MOUNT = 1000.0
 def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, ...]:
     """A boat's ``sensors``: a list of ``{type, name, rate_hz, position, noise}``.
 
-    ``type``: imu, gnss, or odometry (a noisy copy of ``odom``; no ``position``).
+    ``type``: imu, gnss, odometry (a noisy copy of ``odom``; no ``position``) or
+    magnetometer.
 
     Names are unique on the boat (they name its topics and frames); rates are at most the
     physics rate (``simulation.rate_hz``), as a sensor reads the simulated motion.
@@ -67,7 +93,8 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
     if raw is None:
         return ()
     if not isinstance(raw, list):
-        raise ScenarioError(key, raw, "must be a list of sensors ({type: imu|gnss, ...})")
+        kinds = "|".join(SENSOR_TYPES)
+        raise ScenarioError(key, raw, f"must be a list of sensors ({{type: {kinds}, ...}})")
     out: list[SensorSpec] = []
     for i, item in enumerate(raw):
         k = f"{key}[{i}]"
@@ -85,16 +112,17 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
             raise ScenarioError(f"{k}.name", name, f"must be {ROS_NAME_RULE}")
         if name in {s.name for s in out}:
             raise ScenarioError(f"{k}.name", name, "must be unique among the boat's sensors")
-        rate = number(d, "rate_hz", k, {"imu": 100.0, "gnss": 5.0, "odometry": 50.0}[kind], 0.0,
+        rate = number(d, "rate_hz", k, _RATES[kind], 0.0,
                       physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)",
-                      default_doc="imu 100, gnss 5, odometry 50",
+                      default_doc=", ".join(f"{t} {r:g}" for t, r in _RATES.items()),
                       range_doc="(0, simulation.rate_hz] Hz")
         position = vector(d, "position", k, 3, [0.0, 0.0, 0.0], unit="m, body frame, from the "
                           "hull reference point (not for an odometry)", bound=MAX_MOUNT)
         describe(f"{k}.noise", None, "imu: gyroscope {...}, accelerometer {...}, "
                  "orientation_sigma_deg; gnss: horizontal_sigma, vertical_sigma, bias_sigma, "
                  "bias_correlation_time, velocity_sigma; odometry: position_sigma, "
-                 "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg",
+                 "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg; "
+                 "magnetometer: sigma, hard_iron, soft_iron",
                  default_doc="each key's default below")
         noise = mapping(d.get("noise"), f"{k}.noise")
         if kind != "gnss" and "outages" in d:
@@ -103,6 +131,8 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
                          unit="(the probability that a reading is lost)")
         if kind == "imu":
             spec = _imu(name, rate, position, noise, f"{k}.noise")
+        elif kind == "magnetometer":
+            spec = _magnetometer(name, rate, position, noise, f"{k}.noise")
         elif kind == "gnss":
             spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
                             _outages(d.get("outages"), f"{k}.outages"))
@@ -149,6 +179,49 @@ def _triad(raw: Any, key: str, default: InertialNoise, unit: str) -> InertialNoi
     largest = number(d, "range", key, default.range, 0.0, math.inf, low_open=True, unit=unit,
                      allow_inf=True)
     return InertialNoise(*values, scale, math.radians(misalignment), largest)
+
+
+#: T, the largest magnetometer noise sigma and hard-iron component (the Earth's field is
+#: 25-65 uT; a hull's own field near its engine a few hundred uT).
+MAX_MAGNETIC = 1e-3
+#: The largest soft-iron matrix entry in magnitude.
+MAX_SOFT_IRON = 10.0
+
+
+def _magnetometer(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
+                  key: str) -> MagnetometerSpec:
+    """A magnetometer: ``noise: {sigma, hard_iron, soft_iron}`` (T, T, a 3 x 3 matrix)."""
+    only(d, key, ("sigma", "hard_iron", "soft_iron"))
+    default = MagnetometerSpec()
+    sigma = number(d, "sigma", key, default.sigma, 0.0, MAX_MAGNETIC, unit="T")
+    hard = vector(d, "hard_iron", key, 3, [0.0, 0.0, 0.0], bound=MAX_MAGNETIC,
+                  unit="T, sensor frame, added to every reading")
+    soft = _soft_iron(d.get("soft_iron"), f"{key}.soft_iron")
+    return MagnetometerSpec(name, rate, position, sigma, hard, soft)
+
+
+def _soft_iron(raw: Any, key: str) -> np.ndarray:
+    """(3, 3) a soft-iron matrix: 3 rows of 3 finite numbers, invertible (None: identity)."""
+    allowed = (f"3 rows of 3 numbers within +-{MAX_SOFT_IRON:g}, invertible (a determinant "
+               "of at least 1e-6 in magnitude): the field in the sensor's axes is multiplied "
+               "by it")
+    describe(key, None, allowed, default_doc="the identity")
+    if raw is None:
+        return np.eye(3)
+    ok = (isinstance(raw, list) and len(raw) == 3
+          and all(isinstance(row, list) and len(row) == 3 for row in raw)
+          and all(isinstance(x, int | float) and not isinstance(x, bool)
+                  for row in raw for x in row))
+    if not ok:
+        raise ScenarioError(key, raw, f"must be {allowed}")
+    m = np.array(raw, dtype=float)
+    if not np.all(np.isfinite(m)) or np.abs(m).max() > MAX_SOFT_IRON:
+        raise ScenarioError(key, raw, f"every entry must be finite and within "
+                            f"+-{MAX_SOFT_IRON:g}")
+    if abs(np.linalg.det(m)) < 1e-6:
+        raise ScenarioError(key, raw, "must be invertible (a determinant of at least 1e-6 "
+                            "in magnitude)")
+    return m
 
 
 def _odometry_noise(d: Mapping[str, Any], key: str) -> OdometryNoise:

@@ -10,7 +10,7 @@ import numpy as np
 
 from boat_dynamics.physics.core.commands import CommandScript
 from boat_dynamics.physics.core.model import BoatParams, BoatState
-from boat_dynamics.physics.sensors import Datum, SensorSpec
+from boat_dynamics.physics.sensors import Datum, EarthField, SensorSpec
 from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.environment import Environment
@@ -83,6 +83,7 @@ class SimulationSettings:
         wave_precision: precision of the boats' surface queries, ``float64`` (the reference,
             compiled, and the fastest) or ``float32`` (numpy's; heights within about 1e-5 m).
         datum: the world origin on WGS-84 (GNSS fixes).
+        magnetic_field: the Earth's magnetic field there (magnetometers).
         publish_tf: publish ``/tf`` (world -> each boat's base_link) from the true pose.
         wrench_topics: when the ``wrench/<source>`` publishers exist (:data:`WrenchTopics`).
         fleet_state: also publish every boat's pose and twist in one message,
@@ -101,6 +102,7 @@ class SimulationSettings:
     substeps: int = 1
     wave_precision: Precision = DEFAULT_PRECISION
     datum: Datum = field(default_factory=Datum)
+    magnetic_field: EarthField = field(default_factory=EarthField)
     publish_tf: bool = True
     wrench_topics: WrenchTopics = "auto"
     fleet_state: bool = False

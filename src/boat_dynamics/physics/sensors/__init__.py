@@ -1,6 +1,6 @@
 """Sensor models of the core (pure numpy): what sensors on a boat read.
 
-An IMU, a GNSS receiver, and a noisy odometry.
+An IMU, a GNSS receiver, a noisy odometry and a magnetometer.
 
 Each sensor is a frozen spec, a frozen noise state and a function ``measure_*(spec, key,
 state, truth...) -> (reading, state)``; the noise is drawn from the scenario seed by sample
@@ -28,6 +28,12 @@ from boat_dynamics.physics.sensors.imu import (
     measure_imu,
     true_motion,
 )
+from boat_dynamics.physics.sensors.magnetometer import (
+    EarthField,
+    MagnetometerReading,
+    MagnetometerSpec,
+    measure_magnetometer,
+)
 from boat_dynamics.physics.sensors.noise import dropped, stream_key
 from boat_dynamics.physics.sensors.odometry import (
     OdometryNoise,
@@ -36,11 +42,12 @@ from boat_dynamics.physics.sensors.odometry import (
     measure_odometry,
 )
 
-__all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "ImuReading",
-           "ImuSpec", "ImuState", "InertialNoise", "OdometryNoise", "OdometryReading",
-           "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",
-           "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_gnss", "measure_imu",
+__all__ = ["Datum", "EarthField", "GnssNoise", "GnssReading", "GnssSpec", "GnssState",
+           "ImuReading", "ImuSpec", "ImuState", "InertialNoise", "MagnetometerReading",
+           "MagnetometerSpec", "OdometryNoise", "OdometryReading", "OdometrySpec", "SensorSpec",
+           "dropped", "enu_to_geodetic", "geodetic_to_enu", "gnss_start", "has_fix",
+           "imu_start", "measure_gnss", "measure_imu", "measure_magnetometer",
            "measure_odometry", "stream_key", "true_motion"]
 
 #: A sensor of a boat's ``sensors`` list.
-SensorSpec = ImuSpec | GnssSpec | OdometrySpec
+SensorSpec = ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec

@@ -3,6 +3,7 @@
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from boat_dynamics.physics.core.boat import reference_pose
@@ -113,6 +114,31 @@ def test_density_derives_mass():
         ({"simulation": {"datum": {"lat": 1}}}, "simulation.datum.lat", "unknown key"),
         ({"simulation": {"publish_tf": "no"}}, "simulation.publish_tf", "true or false"),
         ({"boats": [{"sensors": {"type": "imu"}}]}, "boats[0].sensors", "list of sensors"),
+        ({"simulation": {"magnetic_field": {"inclination_deg": 95}}},
+         "simulation.magnetic_field.inclination_deg", "[-90, 90] deg"),
+        ({"simulation": {"magnetic_field": {"intensity_nT": -1}}},
+         "simulation.magnetic_field.intensity_nT", "[0, 1e+06] nT"),
+        ({"simulation": {"magnetic_field": {"intensity": 5e-5}}},
+         "simulation.magnetic_field.intensity", "unknown key"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {"sigma": 1.0}}]}]},
+         "boats[0].sensors[0].noise.sigma", "[0, 0.001] T"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {"hard_iron": [0, 1]}}]}]},
+         "boats[0].sensors[0].noise.hard_iron", "3 numbers"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {
+            "hard_iron": [0, 0, 0.01]}}]}]},
+         "boats[0].sensors[0].noise.hard_iron", "within +-0.001"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {
+            "soft_iron": [1, 0, 0]}}]}]},
+         "boats[0].sensors[0].noise.soft_iron", "3 rows of 3 numbers"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {
+            "soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 20]]}}]}]},
+         "boats[0].sensors[0].noise.soft_iron", "within +-10"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {
+            "soft_iron": [[1, 0, 0], [2, 0, 0], [0, 0, 1]]}}]}]},
+         "boats[0].sensors[0].noise.soft_iron", "invertible"),
+        ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {
+            "horizontal_sigma": 1}}]}]},
+         "boats[0].sensors[0].noise.horizontal_sigma", "sigma, hard_iron, soft_iron"),
         ({"boats": [{"sensors": [{"type": "lidar"}]}]}, "boats[0].sensors[0].type",
          "one of: imu, gnss, odometry"),
         ({"boats": [{"sensors": [{"type": "odometry", "position": [0, 0, 1]}]}]},
@@ -372,3 +398,23 @@ def test_a_gnss_takes_its_outages():
     assert sc.boats[0].sensors[0].dropout == 0.0
     sc = parse_scenario({"boats": [{"sensors": [{"type": "imu", "dropout": 0.25}]}]})
     assert sc.boats[0].sensors[0].dropout == 0.25
+
+
+def test_a_magnetometer_takes_its_iron_and_noise_and_the_field_its_datum_s_value():
+    soft = [[1.1, 0.01, 0.0], [0.01, 0.9, 0.0], [0.0, 0.0, 1.0]]
+    sc = parse_scenario({
+        "simulation": {"magnetic_field": {"declination_deg": -2.5, "inclination_deg": 63,
+                                          "intensity_nT": 48500}},
+        "boats": [{"sensors": [{"type": "magnetometer", "name": "compass", "position": [1, 0, 2],
+                                "noise": {"sigma": 5e-8, "hard_iron": [1e-6, 0, -2e-6],
+                                          "soft_iron": soft}}]}]})
+    (mag,) = sc.boats[0].sensors
+    assert (mag.name, mag.rate_hz, mag.sigma) == ("compass", 20.0, 5e-8)
+    assert mag.hard_iron.tolist() == [1e-6, 0.0, -2e-6] and mag.soft_iron.tolist() == soft
+    field = sc.simulation.magnetic_field
+    assert field.declination == pytest.approx(math.radians(-2.5))
+    assert field.inclination == pytest.approx(math.radians(63.0))
+    assert field.intensity == pytest.approx(48500e-9)
+    (default,) = parse_scenario({"boats": [{"sensors": [{"type": "magnetometer"}]}]}
+                                ).boats[0].sensors
+    assert default.soft_iron.tolist() == np.eye(3).tolist() and not default.hard_iron.any()
