@@ -22,11 +22,13 @@ from geometry_msgs.msg import (
     WrenchStamped,
 )
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import Imu, MagneticField, NavSatFix, NavSatStatus
+from sensor_msgs.msg import Imu, MagneticField, NavSatFix, NavSatStatus, Range
 from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.sensors import (
+    DepthReading,
+    DepthSounderSpec,
     GnssReading,
     ImuReading,
     MagnetometerReading,
@@ -39,6 +41,7 @@ from ocean_sim.physics.waves import MAX_COMPONENTS, InvalidSeaStateError, WaveCo
 
 __all__ = [
     "UNMEASURED_VARIANCE",
+    "depth_range",
     "diagnostic_array",
     "environment_from_msg",
     "environment_to_msg",
@@ -201,6 +204,18 @@ def magnetic_field(stamp: Time, frame: str, reading: MagnetometerReading) -> Mag
     """sensor_msgs/MagneticField of a reading: T, the sensor's frame; covariance T^2."""
     return MagneticField(header=_header(stamp, frame), magnetic_field=_vec(reading.field),
                          magnetic_field_covariance=_cov9(reading.covariance))
+
+
+def depth_range(stamp: Time, frame: str, spec: DepthSounderSpec, reading: DepthReading
+                ) -> Range:
+    """sensor_msgs/Range of a depth sounder's reading: ULTRASOUND, m, its cone in rad.
+
+    +inf: no echo within ``max_range``; -inf: nearer than ``min_range`` (REP-117).
+    """
+    return Range(header=_header(stamp, frame), radiation_type=Range.ULTRASOUND,
+                 field_of_view=float(spec.field_of_view), min_range=float(spec.min_range),
+                 max_range=float(spec.max_range), range=float(reading.range),
+                 variance=float(reading.variance))
 
 
 def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading, fix: bool = True) -> NavSatFix:

@@ -9,9 +9,16 @@ import pytest
 import tf2_msgs
 from rosbags.typesys import Stores, get_typestore
 
-from boat_dynamics.physics.sensors import GnssReading, ImuReading, MagnetometerReading
+from boat_dynamics.physics.sensors import (
+    DepthReading,
+    DepthSounderSpec,
+    GnssReading,
+    ImuReading,
+    MagnetometerReading,
+)
 from boat_msgs_py.convert import (
     UNMEASURED_VARIANCE,
+    depth_range,
     gnss_velocity,
     imu,
     magnetic_field,
@@ -69,6 +76,18 @@ def test_a_magnetic_field_message_carries_tesla_in_the_sensor_frame():
     assert m.header.frame_id == "alpha/compass_link" and m.header.stamp.sec == 2
     assert (m.magnetic_field.x, m.magnetic_field.y, m.magnetic_field.z) == (2.3e-5, 1e-7, -4.1e-5)
     assert list(m.magnetic_field_covariance) == [1e-14, 0, 0, 0, 1e-14, 0, 0, 0, 1e-14]
+
+
+def test_a_range_message_carries_the_sounder_s_cone_limits_and_reading():
+    spec = DepthSounderSpec(field_of_view=0.2, min_range=0.5, max_range=100.0, range_sigma=0.1)
+    m = depth_range(seconds_to_time(1.0), "alpha/echo_link", spec, DepthReading(12.25, 0.01))
+    assert (m.header.frame_id, m.radiation_type) == ("alpha/echo_link", 0)  # ULTRASOUND
+    assert (m.field_of_view, m.min_range, m.max_range, m.range) == pytest.approx(
+        (0.2, 0.5, 100.0, 12.25))
+    assert m.variance == pytest.approx(0.01)
+    deep = depth_range(seconds_to_time(1.0), "alpha/echo_link", spec,
+                       DepthReading(math.inf, 0.01))
+    assert deep.range == math.inf  # REP-117: no echo within max_range
 
 
 def test_thruster_topics_are_commands_a_replay_republishes():

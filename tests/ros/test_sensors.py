@@ -237,3 +237,40 @@ def test_a_magnetometer_publishes_the_earth_field_in_its_frame(boatsim, tmp_path
     assert np.abs(np.degrees(headings) - 30.0).max() < 4.5 * math.degrees(sigma / (f * 0.5))
     (_, static), = msgs["/tf_static"]
     assert [t.child_frame_id for t in static.transforms] == ["alpha/compass_link"]
+
+
+def test_a_depth_sounder_ranges_to_the_sea_floor_along_its_tilted_beam(boatsim, tmp_path):
+    """sensor_msgs/Range (ULTRASOUND) on <name>/data in <boat>/<name>_link: from the
+    transducer along the body's -z axis to the floor at the ocean's depth, within its noise;
+    a floor beyond max_range reads +inf (REP-117)."""
+    sigma = 0.05
+    echo = {"type": "depth_sounder", "name": "echo", "position": [0.5, 0.0, -0.4],
+            "field_of_view_deg": 12, "noise": {"range_sigma": sigma}}
+    short = {"type": "depth_sounder", "name": "short", "max_range": 5.0}
+    path = tmp_path / "depth.yaml"
+    path.write_text(yaml.safe_dump({
+        "simulation": {"seed": 3}, "ocean": {"depth": 12.0},
+        "boats": [{"name": "alpha", "initial_pose": {"roll_deg": 8.0, "pitch_deg": -5.0},
+                   "sensors": [echo, short]}]}))
+    types = {}
+    msgs = _run(boatsim, tmp_path, path, 2, "bag", types)
+    assert types["/alpha/echo/data"] == types["/alpha/short/data"] == "sensor_msgs/msg/Range"
+    readings = msgs["/alpha/echo/data"]
+    assert len(readings) == 20  # 10 Hz, t = 0.1 .. 2.0 s
+    odom = {stamp: m for stamp, m in msgs["/alpha/odom"]}
+    errors, tilts = [], []
+    for stamp, m in readings:
+        assert (m.header.frame_id, m.radiation_type) == ("alpha/echo_link", 0)
+        assert (m.min_range, m.max_range) == (0.5, 200.0)
+        assert m.field_of_view == pytest.approx(math.radians(12.0))
+        pose = odom[stamp].pose.pose
+        rot = rotation_matrix(_quat(pose.orientation))
+        transducer = _vec(pose.position) + rot @ [0.5, 0.0, -0.4]
+        # the floor at z = -12 m, the beam's tilt theta: cos(theta) = R_zz
+        errors.append(m.range - (transducer[2] + 12.0) / rot[2, 2])
+        tilts.append(math.degrees(math.acos(rot[2, 2])))
+    assert np.abs(errors).max() < 4.5 * sigma and np.abs(errors).max() > 0.1 * sigma
+    assert max(tilts) > 3.0  # the boat rolls and pitches: the beam is tilted
+    assert readings[0][1].variance == pytest.approx(sigma**2)
+    assert all(m.range == math.inf for _, m in msgs["/alpha/short/data"])
+    assert len(msgs["/alpha/short/data"]) == 20

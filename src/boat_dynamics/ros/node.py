@@ -720,7 +720,7 @@ class DynamicsNode(Node):
         if self._before is not None:
             self.outputs.sensor_readings(lambda rate: self._due(k, self._rate, rate), sec,
                                          nanosec, self._system.center_of_mass, self._before,
-                                         self._state)
+                                         self._state, self.sea.depth)
         if self._due(k, self._rate, self._diag_rate):
             forces = self._forces
             if forces is None:  # before the first step: the forces at the initial state

@@ -164,11 +164,14 @@ class FleetPublisher:
 
     def sensor_readings(self, due: Callable[[float], bool], sec: int, nanosec: int,
                         center_of_mass: np.ndarray, before: FleetState,
-                        after: FleetState) -> None:
-        """Every sensor whose rate is ``due`` (:meth:`SensorPublisher.publish_due`), stamped."""
+                        after: FleetState, depth: float = math.inf) -> None:
+        """Every sensor whose rate is ``due`` (:meth:`SensorPublisher.publish_due`), stamped.
+
+        ``depth``: m, the ocean's (depth sounders).
+        """
         if len(self.sensors):
             self.sensors.publish_due(due, Time(sec=sec, nanosec=nanosec), center_of_mass,
-                                     before, after)
+                                     before, after, depth)
 
     def _publish_wanted(self, topic_key: str, template_key: str, sec: int, nanosec: int,
                         values: np.ndarray, now: float) -> None:

@@ -7,13 +7,14 @@ seed, the boat's name and the sensor's name; messages are built by :mod:`boat_ms
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from geometry_msgs.msg import TwistWithCovarianceStamped
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
-from sensor_msgs.msg import Imu, MagneticField, NavSatFix
+from sensor_msgs.msg import Imu, MagneticField, NavSatFix, Range
 from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.body.rigid_body import rotation_matrix
@@ -22,6 +23,7 @@ from boat_dynamics.physics.core.snapshot import SnapshotError, flatten, restore
 from boat_dynamics.physics.core.system import FleetState
 from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
 from boat_dynamics.physics.sensors import (
+    DepthSounderSpec,
     GnssSpec,
     ImuSpec,
     MagnetometerSpec,
@@ -31,6 +33,7 @@ from boat_dynamics.physics.sensors import (
     gnss_start,
     has_fix,
     imu_start,
+    measure_depth,
     measure_gnss,
     measure_imu,
     measure_magnetometer,
@@ -41,6 +44,7 @@ from boat_dynamics.physics.sensors import (
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import (
+    depth_range,
     gnss_velocity,
     imu,
     magnetic_field,
@@ -168,7 +172,7 @@ class SensorPublisher:
                 sensor.state = restore(sensor.state, arrays, f"sensor{k}.")
 
     def publish_due(self, due, stamp, center_of_mass: np.ndarray, before: FleetState,
-                    after: FleetState) -> None:
+                    after: FleetState, depth: float = math.inf) -> None:
         """Read and publish the sensors ``due(rate_hz)`` says are due at this step.
 
         Args:
@@ -177,6 +181,7 @@ class SensorPublisher:
             center_of_mass: (K, 3) m, body frame, per boat.
             before: the boats' state at the start of the last step.
             after: their state now.
+            depth: m, the ocean's (the sea floor's depth below the mean level; inf: deep).
         """
         now: dict[int, BoatState] = {}  # each boat's state copied once, for all its sensors
         for index, sensor in self._sensors:
@@ -193,6 +198,8 @@ class SensorPublisher:
                 self._gnss(sensor, stamp, center_of_mass[index], now[index], send)
             elif isinstance(sensor.spec, MagnetometerSpec):
                 self._magnetometer(sensor, stamp, now[index], send)
+            elif isinstance(sensor.spec, DepthSounderSpec):
+                self._depth(sensor, stamp, center_of_mass[index], now[index], depth, send)
             else:
                 self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
@@ -227,6 +234,16 @@ class SensorPublisher:
         if send:
             sensor.pubs[0].publish(magnetic_field(stamp, sensor.frame, reading))
 
+    def _depth(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState, depth: float,
+               send: bool) -> None:
+        transducer = after.position + rotation_matrix(after.orientation) @ (
+            sensor.spec.position - com)
+        reading = measure_depth(sensor.spec, sensor.key, sensor.state, transducer,
+                                after.orientation, depth)
+        sensor.state += 1
+        if send:
+            sensor.pubs[0].publish(depth_range(stamp, sensor.frame, sensor.spec, reading))
+
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
                   send: bool) -> None:
         rot = rotation_matrix(after.orientation)
@@ -253,6 +270,9 @@ def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: T
                 gnss_start(spec, key))
     if isinstance(spec, MagnetometerSpec):
         return ([TappedPublisher(node, MagneticField, names.sensor_data_topic(boat, spec.name),
+                                 SENSOR_QOS, tap)], 0)
+    if isinstance(spec, DepthSounderSpec):
+        return ([TappedPublisher(node, Range, names.sensor_data_topic(boat, spec.name),
                                  SENSOR_QOS, tap)], 0)
     return ([TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS,
                              tap)], 0)

@@ -70,7 +70,8 @@ EXERCISES: dict[str, dict] = {
             commands=[{"t": 0.0, "thrust": 0.5, "rudder": 0.1}],
             sensors=[{"type": "imu"}, {"type": "gnss"}, {"type": "odometry"},
                      {"type": "magnetometer",
-                      "noise": {"soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}}])],
+                      "noise": {"soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}},
+                     {"type": "depth_sounder"}])],
     },
     "a beaufort sea, a mesh hull with coefficients, sample points, named thrusters": {
         "ocean": {"spectrum": {"beaufort": 4, "spreading": None}},

@@ -21,6 +21,7 @@ from boat_dynamics.physics.scenario.read import (
 from boat_dynamics.physics.scenario.specs import ScenarioError
 from boat_dynamics.physics.sensors import (
     Datum,
+    DepthSounderSpec,
     EarthField,
     GnssNoise,
     GnssSpec,
@@ -37,9 +38,10 @@ __all__ = ["MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_field_block",
            "sensors_block"]
 
 #: The ``type`` of a sensor.
-SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer")
+SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder")
 #: Hz, each type's default ``rate_hz``.
-_RATES = {"imu": 100.0, "gnss": 5.0, "odometry": 50.0, "magnetometer": 20.0}
+_RATES = {"imu": 100.0, "gnss": 5.0, "odometry": 50.0, "magnetometer": 20.0,
+          "depth_sounder": 10.0}
 
 
 def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
@@ -82,10 +84,10 @@ MAX_MOUNT = 1000.0
 
 
 def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, ...]:
-    """A boat's ``sensors``: a list of ``{type, name, rate_hz, position, noise}``.
+    """A boat's ``sensors``: a list of ``{type, name, rate_hz, position, noise, ...}``.
 
-    ``type``: imu, gnss, odometry (a noisy copy of ``odom``; no ``position``) or
-    magnetometer.
+    ``type``: imu, gnss, odometry (a noisy copy of ``odom``; no ``position``), magnetometer
+    or depth_sounder.
 
     Names are unique on the boat (they name its topics and frames); rates are at most the
     physics rate (``simulation.rate_hz``), as a sensor reads the simulated motion.
@@ -99,7 +101,8 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
     for i, item in enumerate(raw):
         k = f"{key}[{i}]"
         d = mapping(item, k)
-        only(d, k, ("type", "name", "rate_hz", "position", "noise", "outages", "dropout"))
+        only(d, k, ("type", "name", "rate_hz", "position", "noise", "dropout",
+                    *_TYPE_KEYS))
         describe(f"{k}.type", None, f"one of: {', '.join(SENSOR_TYPES)}",
                  default_doc="required")
         describe(f"{k}.name", None, f"{ROS_NAME_RULE}; unique on the boat: its topics and "
@@ -112,37 +115,73 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
             raise ScenarioError(f"{k}.name", name, f"must be {ROS_NAME_RULE}")
         if name in {s.name for s in out}:
             raise ScenarioError(f"{k}.name", name, "must be unique among the boat's sensors")
-        rate = number(d, "rate_hz", k, _RATES[kind], 0.0,
-                      physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)",
-                      default_doc=", ".join(f"{t} {r:g}" for t, r in _RATES.items()),
-                      range_doc="(0, simulation.rate_hz] Hz")
-        position = vector(d, "position", k, 3, [0.0, 0.0, 0.0], unit="m, body frame, from the "
-                          "hull reference point (not for an odometry)", bound=MAX_MOUNT)
-        describe(f"{k}.noise", None, "imu: gyroscope {...}, accelerometer {...}, "
-                 "orientation_sigma_deg; gnss: horizontal_sigma, vertical_sigma, bias_sigma, "
-                 "bias_correlation_time, velocity_sigma; odometry: position_sigma, "
-                 "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg; "
-                 "magnetometer: sigma, hard_iron, soft_iron",
-                 default_doc="each key's default below")
-        noise = mapping(d.get("noise"), f"{k}.noise")
-        if kind != "gnss" and "outages" in d:
-            raise ScenarioError(f"{k}.outages", d["outages"], "only for a gnss")
-        dropout = number(d, "dropout", k, 0.0, 0.0, 1.0,
-                         unit="(the probability that a reading is lost)")
-        if kind == "imu":
-            spec = _imu(name, rate, position, noise, f"{k}.noise")
-        elif kind == "magnetometer":
-            spec = _magnetometer(name, rate, position, noise, f"{k}.noise")
-        elif kind == "gnss":
-            spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
-                            _outages(d.get("outages"), f"{k}.outages"))
-        else:
-            if "position" in d:
-                raise ScenarioError(f"{k}.position", d["position"],
-                                    "not for an odometry (it is the hull reference point's)")
-            spec = OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise"))
-        out.append(replace(spec, dropout=dropout))
+        out.append(_sensor(d, k, kind, name, physics_rate))
     return tuple(out)
+
+
+#: The keys of one type of sensor only: key -> that type.
+_TYPE_KEYS = {"outages": "gnss", "field_of_view_deg": "depth_sounder",
+              "min_range": "depth_sounder", "max_range": "depth_sounder"}
+
+
+def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
+            physics_rate: float) -> SensorSpec:
+    """One sensor ``d`` (at ``k``) of type ``kind``, its name checked."""
+    rate = number(d, "rate_hz", k, _RATES[kind], 0.0,
+                  physics_rate, low_open=True, unit="Hz (at most simulation.rate_hz)",
+                  default_doc=", ".join(f"{t} {r:g}" for t, r in _RATES.items()),
+                  range_doc="(0, simulation.rate_hz] Hz")
+    position = vector(d, "position", k, 3, [0.0, 0.0, 0.0], unit="m, body frame, from the "
+                      "hull reference point (not for an odometry)", bound=MAX_MOUNT)
+    describe(f"{k}.noise", None, "imu: gyroscope {...}, accelerometer {...}, "
+             "orientation_sigma_deg; gnss: horizontal_sigma, vertical_sigma, bias_sigma, "
+             "bias_correlation_time, velocity_sigma; odometry: position_sigma, "
+             "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg; "
+             "magnetometer: sigma, hard_iron, soft_iron; depth_sounder: range_sigma",
+             default_doc="each key's default below")
+    noise = mapping(d.get("noise"), f"{k}.noise")
+    for only_key, only_type in _TYPE_KEYS.items():
+        if kind != only_type and only_key in d:
+            raise ScenarioError(f"{k}.{only_key}", d[only_key], f"only for a {only_type}")
+    dropout = number(d, "dropout", k, 0.0, 0.0, 1.0,
+                     unit="(the probability that a reading is lost)")
+    if kind == "imu":
+        spec = _imu(name, rate, position, noise, f"{k}.noise")
+    elif kind == "magnetometer":
+        spec = _magnetometer(name, rate, position, noise, f"{k}.noise")
+    elif kind == "depth_sounder":
+        spec = _depth_sounder(name, rate, position, d, noise, k)
+    elif kind == "gnss":
+        spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
+                        _outages(d.get("outages"), f"{k}.outages"))
+    else:
+        if "position" in d:
+            raise ScenarioError(f"{k}.position", d["position"],
+                                "not for an odometry (it is the hull reference point's)")
+        spec = OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise"))
+    return replace(spec, dropout=dropout)
+
+
+def _depth_sounder(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
+                   noise: Mapping[str, Any], key: str) -> DepthSounderSpec:
+    """A depth sounder: ``field_of_view_deg``, ``min_range``, ``max_range`` (deg, m, m).
+
+    Its ``noise``: ``{range_sigma}`` (m).
+    """
+    default = DepthSounderSpec()
+    only(noise, f"{key}.noise", ("range_sigma",))
+    fov = number(d, "field_of_view_deg", key, round(math.degrees(default.field_of_view), 6),
+                 0.0, 180.0, low_open=True, unit="deg, the beam's full cone (a depth_sounder's)")
+    nearest = number(d, "min_range", key, default.min_range, 0.0, 1000.0,
+                     unit="m (a depth_sounder's: nearer reads -inf)")
+    farthest = number(d, "max_range", key, default.max_range, 0.0, 12000.0, low_open=True,
+                      unit="m (a depth_sounder's: farther, or no echo, reads +inf)")
+    if farthest <= nearest:
+        raise ScenarioError(f"{key}.max_range", farthest,
+                            f"must be greater than min_range ({nearest:g} m)")
+    sigma = number(noise, "range_sigma", f"{key}.noise", default.range_sigma, 0.0, 100.0,
+                   unit="m")
+    return DepthSounderSpec(name, rate, position, math.radians(fov), nearest, farthest, sigma)
 
 
 _TRIAD_KEYS = ("noise_density", "random_walk", "bias_instability", "bias_correlation_time")

@@ -1,12 +1,18 @@
 """Sensor models of the core (pure numpy): what sensors on a boat read.
 
-An IMU, a GNSS receiver, a noisy odometry and a magnetometer.
+An IMU, a GNSS receiver, a noisy odometry, a magnetometer and a depth sounder.
 
 Each sensor is a frozen spec, a frozen noise state and a function ``measure_*(spec, key,
 state, truth...) -> (reading, state)``; the noise is drawn from the scenario seed by sample
 index (:mod:`.noise`), so the same seed gives the same readings.
 """
 
+from boat_dynamics.physics.sensors.depth_sounder import (
+    DepthReading,
+    DepthSounderSpec,
+    measure_depth,
+    slant_range,
+)
 from boat_dynamics.physics.sensors.gnss import (
     Datum,
     GnssNoise,
@@ -42,12 +48,13 @@ from boat_dynamics.physics.sensors.odometry import (
     measure_odometry,
 )
 
-__all__ = ["Datum", "EarthField", "GnssNoise", "GnssReading", "GnssSpec", "GnssState",
-           "ImuReading", "ImuSpec", "ImuState", "InertialNoise", "MagnetometerReading",
-           "MagnetometerSpec", "OdometryNoise", "OdometryReading", "OdometrySpec", "SensorSpec",
-           "dropped", "enu_to_geodetic", "geodetic_to_enu", "gnss_start", "has_fix",
-           "imu_start", "measure_gnss", "measure_imu", "measure_magnetometer",
-           "measure_odometry", "stream_key", "true_motion"]
+__all__ = ["Datum", "DepthReading", "DepthSounderSpec", "EarthField", "GnssNoise",
+           "GnssReading", "GnssSpec", "GnssState", "ImuReading", "ImuSpec", "ImuState",
+           "InertialNoise", "MagnetometerReading", "MagnetometerSpec", "OdometryNoise",
+           "OdometryReading", "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",
+           "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_depth",
+           "measure_gnss", "measure_imu", "measure_magnetometer", "measure_odometry",
+           "slant_range", "stream_key", "true_motion"]
 
 #: A sensor of a boat's ``sensors`` list.
-SensorSpec = ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec
+SensorSpec = ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec

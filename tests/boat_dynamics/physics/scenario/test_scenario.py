@@ -114,6 +114,19 @@ def test_density_derives_mass():
         ({"simulation": {"datum": {"lat": 1}}}, "simulation.datum.lat", "unknown key"),
         ({"simulation": {"publish_tf": "no"}}, "simulation.publish_tf", "true or false"),
         ({"boats": [{"sensors": {"type": "imu"}}]}, "boats[0].sensors", "list of sensors"),
+        ({"boats": [{"sensors": [{"type": "depth_sounder", "max_range": 0}]}]},
+         "boats[0].sensors[0].max_range", "(0, 12000] m"),
+        ({"boats": [{"sensors": [{"type": "depth_sounder", "min_range": 10,
+                                  "max_range": 5}]}]},
+         "boats[0].sensors[0].max_range", "greater than min_range (10 m)"),
+        ({"boats": [{"sensors": [{"type": "depth_sounder", "field_of_view_deg": 0}]}]},
+         "boats[0].sensors[0].field_of_view_deg", "(0, 180] deg"),
+        ({"boats": [{"sensors": [{"type": "depth_sounder", "noise": {"range_sigma": -0.1}}]}]},
+         "boats[0].sensors[0].noise.range_sigma", "[0, 100] m"),
+        ({"boats": [{"sensors": [{"type": "depth_sounder", "noise": {"sigma": 0.1}}]}]},
+         "boats[0].sensors[0].noise.sigma", "allowed keys here: range_sigma"),
+        ({"boats": [{"sensors": [{"type": "imu", "max_range": 50}]}]},
+         "boats[0].sensors[0].max_range", "only for a depth_sounder"),
         ({"simulation": {"magnetic_field": {"inclination_deg": 95}}},
          "simulation.magnetic_field.inclination_deg", "[-90, 90] deg"),
         ({"simulation": {"magnetic_field": {"intensity_nT": -1}}},
@@ -418,3 +431,18 @@ def test_a_magnetometer_takes_its_iron_and_noise_and_the_field_its_datum_s_value
     (default,) = parse_scenario({"boats": [{"sensors": [{"type": "magnetometer"}]}]}
                                 ).boats[0].sensors
     assert default.soft_iron.tolist() == np.eye(3).tolist() and not default.hard_iron.any()
+
+
+def test_a_depth_sounder_takes_its_cone_ranges_and_noise():
+    sc = parse_scenario({"boats": [{"sensors": [
+        {"type": "depth_sounder", "name": "echo", "position": [0.5, 0, -0.4],
+         "field_of_view_deg": 20, "min_range": 1, "max_range": 80,
+         "noise": {"range_sigma": 0.1}}]}]})
+    (echo,) = sc.boats[0].sensors
+    assert (echo.name, echo.rate_hz, echo.min_range, echo.max_range, echo.range_sigma) == (
+        "echo", 10.0, 1.0, 80.0, 0.1)
+    assert echo.field_of_view == pytest.approx(math.radians(20.0))
+    assert echo.position.tolist() == [0.5, 0.0, -0.4]
+    (default,) = parse_scenario({"boats": [{"sensors": [{"type": "depth_sounder"}]}]}
+                                ).boats[0].sensors
+    assert (default.min_range, default.max_range, default.range_sigma) == (0.5, 200.0, 0.05)
