@@ -274,3 +274,34 @@ def test_a_depth_sounder_ranges_to_the_sea_floor_along_its_tilted_beam(boatsim, 
     assert readings[0][1].variance == pytest.approx(sigma**2)
     assert all(m.range == math.inf for _, m in msgs["/alpha/short/data"])
     assert len(msgs["/alpha/short/data"]) == 20
+
+
+def test_a_sensor_s_latency_publishes_its_readings_that_much_later_stamped_when_taken(
+        boatsim, tmp_path):
+    """The bag's time of a message is the simulation time it was published at: with a
+    latency L a reading stamped t is published at t + L (in simulation time), the same
+    reading a run without latency publishes at t."""
+    runs = {}
+    for latency in (0.0, 0.05):
+        sensors = [{**IMU, "latency": latency}, {**GNSS, "latency": 6 * latency},
+                   {**ODOMETRY, "latency": latency}]
+        path = tmp_path / f"latency_{latency}.yaml"
+        path.write_text(yaml.safe_dump({"simulation": {"seed": 3, "datum": DATUM},
+                                        "boats": [{"name": "alpha", "sensors": sensors}]}))
+        runs[latency] = _run(boatsim, tmp_path, path, 2, f"bag_{latency}")
+
+    def stamp_ns(msg):
+        return msg.header.stamp.sec * 10**9 + msg.header.stamp.nanosec
+
+    # odom (no latency): the bag's time is the header's stamp
+    assert all(t == stamp_ns(m) for t, m in runs[0.05]["/alpha/odom"])
+    for topic, latency, full in (("/alpha/imu/data", 0.05, 200), ("/alpha/gnss/fix", 0.3, 10),
+                                 ("/alpha/gnss/vel", 0.3, 10), ("/alpha/odom_noisy", 0.05, 20)):
+        now = runs[0.0][topic]
+        late = runs[0.05][topic]
+        assert len(now) == full and all(t == stamp_ns(m) for t, m in now)
+        # published latency s after their stamps; those due after the run's end never are
+        assert {t - stamp_ns(m) for t, m in late} == {round(latency * 1e9)}, topic
+        rate = full / 2.0  # readings taken in (2 - latency, 2] s are due after the end
+        assert len(late) == full - math.ceil(latency * rate - 1e-9)
+        assert [repr(m) for _, m in late] == [repr(m) for _, m in now[:len(late)]]

@@ -3,12 +3,14 @@
 A thin adapter over :mod:`boat_dynamics.physics.sensors`: each sensor's noise state is kept
 here between readings (the core's ``measure_*`` returns it), its stream keyed by the scenario
 seed, the boat's name and the sensor's name; messages are built by :mod:`boat_msgs_py.convert`.
+A sensor with a ``latency`` holds its messages (stamped when measured) in a
+:class:`~boat_dynamics.physics.sensors.delay.DelayLine` until they are due.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from geometry_msgs.msg import TwistWithCovarianceStamped
@@ -23,6 +25,7 @@ from boat_dynamics.physics.core.snapshot import SnapshotError, flatten, restore
 from boat_dynamics.physics.core.system import FleetState
 from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
 from boat_dynamics.physics.sensors import (
+    DelayLine,
     DepthSounderSpec,
     GnssSpec,
     ImuSpec,
@@ -68,6 +71,8 @@ class _Sensor:
     state: object  # ImuState | GnssState, or an int: the readings of a white-noise sensor
     pubs: list[TappedPublisher]
     frame: str
+    #: its messages held until published (None: published when measured, no latency)
+    delay: DelayLine | None = field(default=None)
 
 
 class TransformPublisher:
@@ -134,7 +139,11 @@ class SensorPublisher:
                 pubs, state = _publishers(node, boat.name, spec, key, tap)
                 frame = (names.child_frame(boat.name) if isinstance(spec, OdometrySpec)
                          else names.sensor_frame(boat.name, spec.name))
-                self._sensors.append((index, _Sensor(boat, spec, key, state, pubs, frame)))
+                delay = DelayLine(spec.latency) if spec.latency > 0.0 else None
+                self._sensors.append((index, _Sensor(boat, spec, key, state, pubs, frame,
+                                                     delay)))
+        self._delayed = [sensor for _, sensor in self._sensors if sensor.delay is not None]
+        self._t = 0.0  # s, the time of the readings being taken
 
     def __len__(self) -> int:
         return len(self._sensors)
@@ -163,6 +172,8 @@ class SensorPublisher:
             raise SnapshotError(f"sensors: the snapshot's are {saved}, these are "
                                 f"{self._names()}")
         for k, (_, sensor) in enumerate(self._sensors):
+            if sensor.delay is not None:  # messages held are not in a snapshot: lost
+                sensor.delay.clear()
             if isinstance(sensor.state, int):
                 if f"sensor{k}.count" not in arrays:
                     raise SnapshotError(f"sensor{k}.count: missing (a snapshot of other "
@@ -175,6 +186,9 @@ class SensorPublisher:
                     after: FleetState, depth: float = math.inf) -> None:
         """Read and publish the sensors ``due(rate_hz)`` says are due at this step.
 
+        First the messages of sensors with a latency that are due now (taken ``latency`` s
+        ago, or more by less than a step), then this step's readings.
+
         Args:
             due: rate (Hz) -> whether a stream at that rate publishes at this step.
             stamp: builtin_interfaces/Time of ``after``.
@@ -183,6 +197,10 @@ class SensorPublisher:
             after: their state now.
             depth: m, the ocean's (the sea floor's depth below the mean level; inf: deep).
         """
+        self._t = float(after.t)
+        for sensor in self._delayed:
+            for pub, msg in sensor.delay.pop_due(self._t):
+                pub.publish(msg)
         now: dict[int, BoatState] = {}  # each boat's state copied once, for all its sensors
         for index, sensor in self._sensors:
             if not due(sensor.spec.rate_hz):
@@ -203,6 +221,13 @@ class SensorPublisher:
             else:
                 self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
+    def _send(self, sensor: _Sensor, pub: int, msg) -> None:
+        """Publish ``msg`` on the sensor's publisher ``pub`` now, or after its latency."""
+        if sensor.delay is None:
+            sensor.pubs[pub].publish(msg)
+        else:
+            sensor.delay.push(self._t, (sensor.pubs[pub], msg))
+
     def _imu(self, sensor: _Sensor, stamp, com: np.ndarray, before: BoatState,
              after: BoatState, send: bool) -> None:
         spec = sensor.spec
@@ -210,7 +235,7 @@ class SensorPublisher:
         reading, sensor.state = measure_imu(spec, sensor.key, sensor.state, after.orientation,
                                             omega, force)
         if send:
-            sensor.pubs[0].publish(imu(stamp, sensor.frame, reading))
+            self._send(sensor, 0, imu(stamp, sensor.frame, reading))
 
     def _gnss(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
               send: bool) -> None:
@@ -223,16 +248,16 @@ class SensorPublisher:
                                              antenna, velocity)
         fix = has_fix(spec, after.t)  # in an outage: NO_FIX, and no velocity
         if send:
-            sensor.pubs[0].publish(nav_sat_fix(stamp, sensor.frame, reading, fix))
+            self._send(sensor, 0, nav_sat_fix(stamp, sensor.frame, reading, fix))
         if send and fix:
-            sensor.pubs[1].publish(gnss_velocity(stamp, reading))
+            self._send(sensor, 1, gnss_velocity(stamp, reading))
 
     def _magnetometer(self, sensor: _Sensor, stamp, after: BoatState, send: bool) -> None:
         reading = measure_magnetometer(sensor.spec, sensor.key, sensor.state,
                                        self._sim.magnetic_field, after.orientation)
         sensor.state += 1
         if send:
-            sensor.pubs[0].publish(magnetic_field(stamp, sensor.frame, reading))
+            self._send(sensor, 0, magnetic_field(stamp, sensor.frame, reading))
 
     def _depth(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState, depth: float,
                send: bool) -> None:
@@ -242,7 +267,7 @@ class SensorPublisher:
                                 after.orientation, depth)
         sensor.state += 1
         if send:
-            sensor.pubs[0].publish(depth_range(stamp, sensor.frame, sensor.spec, reading))
+            self._send(sensor, 0, depth_range(stamp, sensor.frame, sensor.spec, reading))
 
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
                   send: bool) -> None:
@@ -253,7 +278,7 @@ class SensorPublisher:
                                    after.angular_velocity)
         sensor.state += 1
         if send:
-            sensor.pubs[0].publish(noisy_odometry(stamp, sensor.frame, reading))
+            self._send(sensor, 0, noisy_odometry(stamp, sensor.frame, reading))
 
 
 def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None

@@ -34,7 +34,7 @@ from boat_dynamics.physics.sensors import (
 )
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
 
-__all__ = ["MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_field_block",
+__all__ = ["MAX_LATENCY", "MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_field_block",
            "sensors_block"]
 
 #: The ``type`` of a sensor.
@@ -101,7 +101,7 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
     for i, item in enumerate(raw):
         k = f"{key}[{i}]"
         d = mapping(item, k)
-        only(d, k, ("type", "name", "rate_hz", "position", "noise", "dropout",
+        only(d, k, ("type", "name", "rate_hz", "position", "noise", "dropout", "latency",
                     *_TYPE_KEYS))
         describe(f"{k}.type", None, f"one of: {', '.join(SENSOR_TYPES)}",
                  default_doc="required")
@@ -119,6 +119,8 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
     return tuple(out)
 
 
+#: s, the longest ``latency``.
+MAX_LATENCY = 60.0
 #: The keys of one type of sensor only: key -> that type.
 _TYPE_KEYS = {"outages": "gnss", "field_of_view_deg": "depth_sounder",
               "min_range": "depth_sounder", "max_range": "depth_sounder"}
@@ -145,6 +147,8 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
             raise ScenarioError(f"{k}.{only_key}", d[only_key], f"only for a {only_type}")
     dropout = number(d, "dropout", k, 0.0, 0.0, 1.0,
                      unit="(the probability that a reading is lost)")
+    latency = number(d, "latency", k, 0.0, 0.0, MAX_LATENCY,
+                     unit="s of simulation time from a reading (its stamp) to its publication")
     if kind == "imu":
         spec = _imu(name, rate, position, noise, f"{k}.noise")
     elif kind == "magnetometer":
@@ -159,7 +163,7 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
             raise ScenarioError(f"{k}.position", d["position"],
                                 "not for an odometry (it is the hull reference point's)")
         spec = OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise"))
-    return replace(spec, dropout=dropout)
+    return replace(spec, dropout=dropout, latency=latency)
 
 
 def _depth_sounder(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],

@@ -7,6 +7,7 @@ state, truth...) -> (reading, state)``; the noise is drawn from the scenario see
 index (:mod:`.noise`), so the same seed gives the same readings.
 """
 
+from boat_dynamics.physics.sensors.delay import DelayLine
 from boat_dynamics.physics.sensors.depth_sounder import (
     DepthReading,
     DepthSounderSpec,
@@ -48,7 +49,7 @@ from boat_dynamics.physics.sensors.odometry import (
     measure_odometry,
 )
 
-__all__ = ["Datum", "DepthReading", "DepthSounderSpec", "EarthField", "GnssNoise",
+__all__ = ["Datum", "DelayLine", "DepthReading", "DepthSounderSpec", "EarthField", "GnssNoise",
            "GnssReading", "GnssSpec", "GnssState", "ImuReading", "ImuSpec", "ImuState",
            "InertialNoise", "MagnetometerReading", "MagnetometerSpec", "OdometryNoise",
            "OdometryReading", "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",

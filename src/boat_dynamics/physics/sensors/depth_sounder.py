@@ -46,6 +46,7 @@ class DepthSounderSpec:
         max_range: m, the farthest range it reads (farther, or no echo: +inf).
         range_sigma: m, white noise, 1 sigma.
         dropout: the probability that a reading is lost (not published).
+        latency: s, from a reading (its stamp) to its publication.
     """
 
     name: str = "depth_sounder"
@@ -56,6 +57,7 @@ class DepthSounderSpec:
     max_range: float = 200.0
     range_sigma: float = 0.05
     dropout: float = 0.0
+    latency: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -72,6 +72,7 @@ class GnssSpec:
         noise: its noise.
         outages: ((start, end), ...) s of simulation time, start <= t < end, without a fix.
         dropout: the probability that a fix is lost (neither it nor its velocity published).
+        latency: s, from a fix (its stamp) to its publication (and its velocity's).
     """
 
     name: str = "gnss"
@@ -80,6 +81,7 @@ class GnssSpec:
     noise: GnssNoise = GnssNoise()
     outages: tuple[tuple[float, float], ...] = ()
     dropout: float = 0.0
+    latency: float = 0.0
 
 
 @dataclass(frozen=True)

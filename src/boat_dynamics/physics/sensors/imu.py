@@ -90,6 +90,7 @@ class ImuSpec:
         accelerometer: specific-force noise.
         orientation_sigma: rad, white attitude noise per axis.
         dropout: the probability that a reading is lost (not published).
+        latency: s, from a reading (its stamp) to its publication.
     """
 
     name: str = "imu"
@@ -99,6 +100,7 @@ class ImuSpec:
     accelerometer: InertialNoise = ACCELEROMETER
     orientation_sigma: float = math.radians(0.1)
     dropout: float = 0.0
+    latency: float = 0.0
 
 
 @dataclass(frozen=True)

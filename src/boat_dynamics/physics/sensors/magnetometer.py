@@ -79,6 +79,7 @@ class MagnetometerSpec:
         hard_iron: (3,) T, sensor frame, added to every reading.
         soft_iron: (3, 3) the matrix W applied to the field in the sensor's axes.
         dropout: the probability that a reading is lost (not published).
+        latency: s, from a reading (its stamp) to its publication.
     """
 
     name: str = "magnetometer"
@@ -88,6 +89,7 @@ class MagnetometerSpec:
     hard_iron: np.ndarray = field(default_factory=lambda: np.zeros(3))
     soft_iron: np.ndarray = field(default_factory=lambda: np.eye(3))
     dropout: float = 0.0
+    latency: float = 0.0
 
 
 @dataclass(frozen=True)

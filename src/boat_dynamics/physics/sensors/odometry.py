@@ -33,13 +33,15 @@ class OdometryNoise:
 class OdometrySpec:
     """A noisy odometry of a boat: topic ``<ns>/<name>``, child frame ``<ns>/base_link``.
 
-    ``dropout``: the probability that a reading is lost (not published).
+    ``dropout``: the probability that a reading is lost (not published); ``latency``: s, from
+    a reading (its stamp) to its publication.
     """
 
     name: str = "odometry"
     rate_hz: float = 50.0
     noise: OdometryNoise = OdometryNoise()
     dropout: float = 0.0
+    latency: float = 0.0
 
 
 @dataclass(frozen=True)

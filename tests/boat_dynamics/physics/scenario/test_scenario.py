@@ -114,6 +114,10 @@ def test_density_derives_mass():
         ({"simulation": {"datum": {"lat": 1}}}, "simulation.datum.lat", "unknown key"),
         ({"simulation": {"publish_tf": "no"}}, "simulation.publish_tf", "true or false"),
         ({"boats": [{"sensors": {"type": "imu"}}]}, "boats[0].sensors", "list of sensors"),
+        ({"boats": [{"sensors": [{"type": "imu", "latency": -0.01}]}]},
+         "boats[0].sensors[0].latency", "[0, 60] s"),
+        ({"boats": [{"sensors": [{"type": "gnss", "latency": math.inf}]}]},
+         "boats[0].sensors[0].latency", "[0, 60] s"),
         ({"boats": [{"sensors": [{"type": "depth_sounder", "max_range": 0}]}]},
          "boats[0].sensors[0].max_range", "(0, 12000] m"),
         ({"boats": [{"sensors": [{"type": "depth_sounder", "min_range": 10,
@@ -411,6 +415,15 @@ def test_a_gnss_takes_its_outages():
     assert sc.boats[0].sensors[0].dropout == 0.0
     sc = parse_scenario({"boats": [{"sensors": [{"type": "imu", "dropout": 0.25}]}]})
     assert sc.boats[0].sensors[0].dropout == 0.25
+    assert sc.boats[0].sensors[0].latency == 0.0
+
+
+def test_every_sensor_takes_a_latency():
+    kinds = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder")
+    sc = parse_scenario({"boats": [{"sensors": [{"type": kind, "latency": 0.05 * (i + 1)}
+                                                for i, kind in enumerate(kinds)]}]})
+    assert [s.latency for s in sc.boats[0].sensors] == pytest.approx([0.05, 0.1, 0.15, 0.2,
+                                                                      0.25])
 
 
 def test_a_magnetometer_takes_its_iron_and_noise_and_the_field_its_datum_s_value():
