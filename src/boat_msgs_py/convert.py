@@ -45,6 +45,7 @@ __all__ = [
     "diagnostic_array",
     "environment_from_msg",
     "environment_to_msg",
+    "gnss_heading",
     "gnss_velocity",
     "imu",
     "lockstep_grant",
@@ -245,6 +246,22 @@ def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading, fix: bool = True)
 #: not its convention, and makes the matrix indefinite), so a variance far beyond any boat's
 #: turn rate (a standard deviation of 1000 rad/s), which a filter fusing it learns nothing from.
 UNMEASURED_VARIANCE = 1e6
+
+
+def gnss_heading(stamp: Time, frame: str, yaw: float, sigma: float) -> Imu:
+    """sensor_msgs/Imu of a dual-antenna heading: the yaw alone (ENU, rad).
+
+    As GNSS drivers publish one (ublox's ``navheading``): the orientation is the rotation by
+    ``yaw`` about z; its covariance sigma^2 (rad^2) on yaw and :data:`UNMEASURED_VARIANCE`
+    (as rad^2: nothing a filter learns from) on roll and pitch; no angular velocity or
+    acceleration (their covariances' first element -1, as sensor_msgs/Imu says).
+    """
+    cov = np.diag([UNMEASURED_VARIANCE, UNMEASURED_VARIANCE, sigma ** 2])
+    none = [-1.0] + [0.0] * 8
+    return Imu(header=_header(stamp, frame),
+               orientation=_quat(np.array([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])),
+               orientation_covariance=_cov9(cov), angular_velocity_covariance=none,
+               linear_acceleration_covariance=none)
 
 
 def gnss_velocity(stamp: Time, reading: GnssReading) -> TwistWithCovarianceStamped:

@@ -45,6 +45,7 @@ __all__ = [
     "boat_topic",
     "child_frame",
     "gnss_fix_topic",
+    "gnss_heading_topic",
     "gnss_vel_topic",
     "imu_topic",
     "is_command_topic",
@@ -176,6 +177,11 @@ def sensor_data_topic(boat: str, sensor: str) -> str:
 def gnss_fix_topic(boat: str, sensor: str) -> str:
     """sensor_msgs/NavSatFix of a GNSS receiver named ``sensor``: ``<boat>/<sensor>/fix``."""
     return boat_topic(boat, f"{sensor}/fix")
+
+
+def gnss_heading_topic(boat: str, sensor: str) -> str:
+    """sensor_msgs/Imu, a dual-antenna receiver's yaw alone: ``<boat>/<sensor>/heading``."""
+    return boat_topic(boat, f"{sensor}/heading")
 
 
 def gnss_vel_topic(boat: str, sensor: str) -> str:

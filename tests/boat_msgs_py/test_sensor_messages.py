@@ -19,6 +19,7 @@ from boat_dynamics.physics.sensors import (
 from boat_msgs_py.convert import (
     UNMEASURED_VARIANCE,
     depth_range,
+    gnss_heading,
     gnss_velocity,
     imu,
     magnetic_field,
@@ -88,6 +89,18 @@ def test_a_range_message_carries_the_sounder_s_cone_limits_and_reading():
     deep = depth_range(seconds_to_time(1.0), "alpha/echo_link", spec,
                        DepthReading(math.inf, 0.01))
     assert deep.range == math.inf  # REP-117: no echo within max_range
+
+
+def test_a_gnss_heading_is_an_imu_message_of_yaw_alone():
+    m = gnss_heading(seconds_to_time(1.0), "alpha/gnss_link", math.radians(30.0), 0.01)
+    assert m.header.frame_id == "alpha/gnss_link"
+    q = m.orientation
+    assert (q.x, q.y) == (0.0, 0.0)
+    assert 2 * math.atan2(q.z, q.w) == pytest.approx(math.radians(30.0))
+    assert list(m.orientation_covariance)[::4] == [UNMEASURED_VARIANCE, UNMEASURED_VARIANCE,
+                                                   pytest.approx(1e-4)]
+    # REP-145 / sensor_msgs/Imu: -1 first: no angular velocity, no acceleration
+    assert m.angular_velocity_covariance[0] == m.linear_acceleration_covariance[0] == -1.0
 
 
 def test_thruster_topics_are_commands_a_replay_republishes():

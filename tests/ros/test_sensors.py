@@ -1,4 +1,5 @@
-"""Sensors and transforms over ROS 2: /tf against /odom, /tf_static, IMU and GNSS readings.
+"""Sensors and transforms over ROS 2: /tf against /odom, /tf_static, the IMU, GNSS (with its
+heading), magnetometer and depth sounder readings, dropouts and latencies.
 
 Each test runs `boatsim run --fast` on a small scenario and reads its bag: simulation time
 only, no wall-clock assumption.
@@ -274,6 +275,38 @@ def test_a_depth_sounder_ranges_to_the_sea_floor_along_its_tilted_beam(boatsim, 
     assert readings[0][1].variance == pytest.approx(sigma**2)
     assert all(m.range == math.inf for _, m in msgs["/alpha/short/data"])
     assert len(msgs["/alpha/short/data"]) == 20
+
+
+def test_a_dual_antenna_gnss_publishes_the_boat_s_yaw_but_not_in_an_outage(boatsim, tmp_path):
+    """sensor_msgs/Imu on <gnss>/heading: odom's yaw within the heading noise, with each fix
+    that has one (none in an outage)."""
+    sigma_deg = 0.5
+    gnss = {**GNSS, "heading_baseline": [1.2, 0.0, 0.0], "outages": [[1.0, 1.5]],
+            "noise": {**GNSS["noise"], "heading_sigma_deg": sigma_deg}}
+    path = tmp_path / "heading.yaml"
+    path.write_text(yaml.safe_dump({
+        "simulation": {"seed": 3, "datum": DATUM},
+        "boats": [{"name": "alpha", "initial_pose": {"yaw_deg": 40.0}, "sensors": [gnss]}]}))
+    types = {}
+    msgs = _run(boatsim, tmp_path, path, 2, "bag", types)
+    assert types["/alpha/gnss/heading"] == "sensor_msgs/msg/Imu"
+    headings = msgs["/alpha/gnss/heading"]
+    stamps = [t for t, _ in headings]
+    # 5 Hz, t = 0.2 .. 2.0 s, less the fixes at 1.0, 1.2, 1.4 s (the outage)
+    assert len(headings) == 7 and not any(1.0e9 <= t < 1.5e9 for t in stamps)
+    odom = {stamp: m for stamp, m in msgs["/alpha/odom"]}
+    errors = []
+    for stamp, m in headings:
+        assert m.header.frame_id == "alpha/gnss_link"
+        q = _quat(odom[stamp].pose.pose.orientation)
+        x_axis = rotation_matrix(q)[:, 0]  # the baseline's direction: the body's x axis
+        truth = math.atan2(x_axis[1], x_axis[0])
+        yaw = 2 * math.atan2(m.orientation.z, m.orientation.w)
+        errors.append(math.degrees(math.remainder(yaw - truth, 2 * math.pi)))
+        assert abs(math.degrees(truth) - 40.0) < 1.0  # the boat keeps its initial yaw
+    assert 0.0 < np.abs(errors).max() < 4.5 * sigma_deg
+    assert np.reshape(headings[0][1].orientation_covariance, (3, 3))[2, 2] == pytest.approx(
+        math.radians(sigma_deg) ** 2)
 
 
 def test_a_sensor_s_latency_publishes_its_readings_that_much_later_stamped_when_taken(

@@ -38,6 +38,7 @@ from boat_dynamics.physics.sensors import (
     imu_start,
     measure_depth,
     measure_gnss,
+    measure_heading,
     measure_imu,
     measure_magnetometer,
     measure_odometry,
@@ -48,6 +49,7 @@ from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import (
     depth_range,
+    gnss_heading,
     gnss_velocity,
     imu,
     magnetic_field,
@@ -244,13 +246,17 @@ class SensorPublisher:
         antenna = after.position + rot @ (spec.position - com)
         velocity = rot @ (after.velocity + np.cross(after.angular_velocity,
                                                     spec.position - com))
+        yaw = measure_heading(spec, sensor.key, sensor.state.sample, after.orientation)
         reading, sensor.state = measure_gnss(spec, sensor.key, sensor.state, self._sim.datum,
                                              antenna, velocity)
-        fix = has_fix(spec, after.t)  # in an outage: NO_FIX, and no velocity
+        fix = has_fix(spec, after.t)  # in an outage: NO_FIX, and no velocity or heading
         if send:
             self._send(sensor, 0, nav_sat_fix(stamp, sensor.frame, reading, fix))
         if send and fix:
             self._send(sensor, 1, gnss_velocity(stamp, reading))
+        if send and fix and yaw is not None:
+            self._send(sensor, 2, gnss_heading(stamp, sensor.frame, yaw,
+                                               spec.noise.heading_sigma))
 
     def _magnetometer(self, sensor: _Sensor, stamp, after: BoatState, send: bool) -> None:
         reading = measure_magnetometer(sensor.spec, sensor.key, sensor.state,
@@ -288,11 +294,14 @@ def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: T
         return ([TappedPublisher(node, Imu, names.imu_topic(boat, spec.name), SENSOR_QOS,
                                  tap)], imu_start(spec, key))
     if isinstance(spec, GnssSpec):
+        heading = ([] if spec.heading_baseline is None else
+                   [TappedPublisher(node, Imu, names.gnss_heading_topic(boat, spec.name),
+                                    SENSOR_QOS, tap)])
         return ([TappedPublisher(node, NavSatFix, names.gnss_fix_topic(boat, spec.name),
                                  SENSOR_QOS, tap),
                  TappedPublisher(node, TwistWithCovarianceStamped,
-                                 names.gnss_vel_topic(boat, spec.name), SENSOR_QOS, tap)],
-                gnss_start(spec, key))
+                                 names.gnss_vel_topic(boat, spec.name), SENSOR_QOS, tap),
+                 *heading], gnss_start(spec, key))
     if isinstance(spec, MagnetometerSpec):
         return ([TappedPublisher(node, MagneticField, names.sensor_data_topic(boat, spec.name),
                                  SENSOR_QOS, tap)], 0)

@@ -71,7 +71,8 @@ EXERCISES: dict[str, dict] = {
             sensors=[{"type": "imu"}, {"type": "gnss"}, {"type": "odometry"},
                      {"type": "magnetometer",
                       "noise": {"soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}},
-                     {"type": "depth_sounder"}])],
+                     {"type": "depth_sounder"},
+                     {"type": "gnss", "name": "dual", "heading_baseline": [1.0, 0.0, 0.0]}])],
     },
     "a beaufort sea, a mesh hull with coefficients, sample points, named thrusters": {
         "ocean": {"spectrum": {"beaufort": 4, "spreading": None}},

@@ -122,8 +122,9 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
 #: s, the longest ``latency``.
 MAX_LATENCY = 60.0
 #: The keys of one type of sensor only: key -> that type.
-_TYPE_KEYS = {"outages": "gnss", "field_of_view_deg": "depth_sounder",
-              "min_range": "depth_sounder", "max_range": "depth_sounder"}
+_TYPE_KEYS = {"outages": "gnss", "heading_baseline": "gnss",
+              "field_of_view_deg": "depth_sounder", "min_range": "depth_sounder",
+              "max_range": "depth_sounder"}
 
 
 def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
@@ -137,9 +138,10 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
                       "hull reference point (not for an odometry)", bound=MAX_MOUNT)
     describe(f"{k}.noise", None, "imu: gyroscope {...}, accelerometer {...}, "
              "orientation_sigma_deg; gnss: horizontal_sigma, vertical_sigma, bias_sigma, "
-             "bias_correlation_time, velocity_sigma; odometry: position_sigma, "
-             "orientation_sigma_deg, velocity_sigma, angular_velocity_sigma_deg; "
-             "magnetometer: sigma, hard_iron, soft_iron; depth_sounder: range_sigma",
+             "bias_correlation_time, velocity_sigma, heading_sigma_deg; odometry: "
+             "position_sigma, orientation_sigma_deg, velocity_sigma, "
+             "angular_velocity_sigma_deg; magnetometer: sigma, hard_iron, soft_iron; "
+             "depth_sounder: range_sigma",
              default_doc="each key's default below")
     noise = mapping(d.get("noise"), f"{k}.noise")
     for only_key, only_type in _TYPE_KEYS.items():
@@ -157,7 +159,8 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
         spec = _depth_sounder(name, rate, position, d, noise, k)
     elif kind == "gnss":
         spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
-                        _outages(d.get("outages"), f"{k}.outages"))
+                        _outages(d.get("outages"), f"{k}.outages"),
+                        heading_baseline=_baseline(d, k))
     else:
         if "position" in d:
             raise ScenarioError(f"{k}.position", d["position"],
@@ -301,10 +304,23 @@ def _outages(raw: Any, key: str) -> tuple[tuple[float, float], ...]:
     return tuple(out)
 
 
+def _baseline(d: Mapping[str, Any], key: str) -> np.ndarray | None:
+    """A receiver's ``heading_baseline`` (m, body frame, to its second antenna), or None."""
+    if d.get("heading_baseline") is None:
+        return None
+    b = vector(d, "heading_baseline", key, 3, [0.0, 0.0, 0.0], bound=MAX_MOUNT,
+               default_doc="none: no heading", unit="m, body frame, from the antenna to a "
+               "second one, at least 0.1 m horizontally (a gnss's: <name>/heading)")
+    if math.hypot(b[0], b[1]) < 0.1:
+        raise ScenarioError(f"{key}.heading_baseline", d["heading_baseline"],
+                            "must reach at least 0.1 m horizontally (x, y) from the antenna")
+    return b
+
+
 def _gnss_noise(d: Mapping[str, Any], key: str) -> GnssNoise:
     fields = ("horizontal_sigma", "vertical_sigma", "bias_sigma", "bias_correlation_time",
               "velocity_sigma")
-    only(d, key, fields)
+    only(d, key, (*fields, "heading_sigma_deg"))
     default = GnssNoise()
     values = {f: number(d, f, key, getattr(default, f), 0.0,
                         1e7 if f == "bias_correlation_time" else 1e4,
@@ -314,4 +330,6 @@ def _gnss_noise(d: Mapping[str, Any], key: str) -> GnssNoise:
     if values["bias_correlation_time"] == 0.0 and values["bias_sigma"] > 0.0:
         raise ScenarioError(f"{key}.bias_correlation_time", 0.0,
                             "must be > 0 s when bias_sigma > 0")
-    return GnssNoise(**values)
+    heading = number(d, "heading_sigma_deg", key, math.degrees(GnssNoise.heading_sigma), 0.0,
+                     90.0, unit="deg (a heading_baseline's)")
+    return GnssNoise(**values, heading_sigma=math.radians(heading))

@@ -25,6 +25,7 @@ from boat_dynamics.physics.sensors.gnss import (
     gnss_start,
     has_fix,
     measure_gnss,
+    measure_heading,
 )
 from boat_dynamics.physics.sensors.imu import (
     ImuReading,
@@ -54,8 +55,8 @@ __all__ = ["Datum", "DelayLine", "DepthReading", "DepthSounderSpec", "EarthField
            "InertialNoise", "MagnetometerReading", "MagnetometerSpec", "OdometryNoise",
            "OdometryReading", "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",
            "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_depth",
-           "measure_gnss", "measure_imu", "measure_magnetometer", "measure_odometry",
-           "slant_range", "stream_key", "true_motion"]
+           "measure_gnss", "measure_heading", "measure_imu", "measure_magnetometer",
+           "measure_odometry", "slant_range", "stream_key", "true_motion"]
 
 #: A sensor of a boat's ``sensors`` list.
 SensorSpec = ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec

@@ -19,19 +19,37 @@ correlated over 60 s, 0.05 m/s. The fix's covariance is their sum, per axis
 Outages (``outages``: intervals of simulation time: under a bridge, beside a quay wall): the
 receiver has no fix (:func:`has_fix`); its noise runs on, so the fixes after an outage are
 those it would have had.
+
+Heading (a dual-antenna receiver, ``heading_baseline`` b: body frame, from this antenna to
+the second one): the receiver measures the baseline's direction in the world, w = R b, and
+gives the boat's yaw (ENU, counter-clockwise from east) as the baseline's minus its mounting
+angle, psi = atan2(w_y, w_x) - atan2(b_y, b_x), plus white noise of ``heading_sigma`` (rad;
+default 0.2 deg, an RTK heading over a 1 m baseline: its error scales about as 1 / the
+baseline's length). Rolled or pitched, the baseline's horizontal projection turns a little
+from the body's heading, as a real receiver's does. A baseline within about 84 deg of the
+vertical (its horizontal part under a tenth of its length) gives no heading. The draws are
+apart from the fix's (:data:`HEADING_SAMPLES`), so a heading leaves the fixes as they were.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 import pymap3d
 
+from boat_dynamics.physics.body.rigid_body import rotation_matrix
 from boat_dynamics.physics.sensors.noise import gauss_markov, standard_normal
 
-__all__ = ["Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState", "enu_to_geodetic",
-           "geodetic_to_enu", "gnss_start", "has_fix", "measure_gnss"]
+__all__ = ["HEADING_SAMPLES", "Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState",
+           "enu_to_geodetic", "geodetic_to_enu", "gnss_start", "has_fix", "measure_gnss",
+           "measure_heading"]
+
+#: Where a stream's heading draws start: past every fix's own counter, before the dropouts'.
+HEADING_SAMPLES = 2**60
+#: The shortest horizontal part of a heading baseline, as a fraction of its length.
+MIN_HORIZONTAL = 0.1
 
 
 @dataclass(frozen=True)
@@ -51,13 +69,14 @@ class Datum:
 
 @dataclass(frozen=True)
 class GnssNoise:
-    """A receiver's noise: m and m/s, 1 sigma; the correlation time in s."""
+    """A receiver's noise: m and m/s, 1 sigma; the correlation time in s; heading: rad."""
 
     horizontal_sigma: float = 1.5
     vertical_sigma: float = 3.0
     bias_sigma: float = 0.5
     bias_correlation_time: float = 60.0
     velocity_sigma: float = 0.05
+    heading_sigma: float = math.radians(0.2)
 
 
 @dataclass(frozen=True)
@@ -73,6 +92,8 @@ class GnssSpec:
         outages: ((start, end), ...) s of simulation time, start <= t < end, without a fix.
         dropout: the probability that a fix is lost (neither it nor its velocity published).
         latency: s, from a fix (its stamp) to its publication (and its velocity's).
+        heading_baseline: (3,) m, body frame, from this antenna to a second one (a
+            dual-antenna receiver's heading), or None: no heading.
     """
 
     name: str = "gnss"
@@ -82,6 +103,7 @@ class GnssSpec:
     outages: tuple[tuple[float, float], ...] = ()
     dropout: float = 0.0
     latency: float = 0.0
+    heading_baseline: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -156,3 +178,28 @@ def measure_gnss(spec: GnssSpec, key: np.ndarray, state: GnssState, datum: Datum
         velocity=velocity + n.velocity_sigma * w[2],
         velocity_covariance=np.eye(3) * n.velocity_sigma ** 2,
     ), GnssState(state.sample + 1, bias)
+
+
+def measure_heading(spec: GnssSpec, key: np.ndarray, sample: int,
+                    orientation: np.ndarray) -> float | None:
+    """The yaw (rad, ENU, in (-pi, pi]) of fix number ``sample`` from the heading baseline.
+
+    None when the receiver has no baseline, or it is too steep for a heading (its horizontal
+    part under :data:`MIN_HORIZONTAL` of its length).
+
+    Args:
+        spec: the receiver (its ``heading_baseline`` and ``noise.heading_sigma``).
+        key: its noise stream (:func:`.noise.stream_key`).
+        sample: the fix's index (the state's ``sample`` before the fix).
+        orientation: (4,) the boat's attitude (x, y, z, w), body to world.
+    """
+    b = spec.heading_baseline
+    if b is None:
+        return None
+    w = rotation_matrix(orientation) @ b
+    if math.hypot(w[0], w[1]) < MIN_HORIZONTAL * float(np.linalg.norm(b)):
+        return None
+    noise = spec.noise.heading_sigma * float(standard_normal(key, HEADING_SAMPLES + sample,
+                                                             1)[0])
+    yaw = math.atan2(w[1], w[0]) - math.atan2(b[1], b[0]) + noise
+    return math.remainder(yaw, 2.0 * math.pi)

@@ -114,6 +114,14 @@ def test_density_derives_mass():
         ({"simulation": {"datum": {"lat": 1}}}, "simulation.datum.lat", "unknown key"),
         ({"simulation": {"publish_tf": "no"}}, "simulation.publish_tf", "true or false"),
         ({"boats": [{"sensors": {"type": "imu"}}]}, "boats[0].sensors", "list of sensors"),
+        ({"boats": [{"sensors": [{"type": "gnss", "heading_baseline": [0.05, 0.05, 1]}]}]},
+         "boats[0].sensors[0].heading_baseline", "at least 0.1 m horizontally"),
+        ({"boats": [{"sensors": [{"type": "gnss", "heading_baseline": [1, 0]}]}]},
+         "boats[0].sensors[0].heading_baseline", "3 numbers"),
+        ({"boats": [{"sensors": [{"type": "imu", "heading_baseline": [1, 0, 0]}]}]},
+         "boats[0].sensors[0].heading_baseline", "only for a gnss"),
+        ({"boats": [{"sensors": [{"type": "gnss", "noise": {"heading_sigma_deg": 100}}]}]},
+         "boats[0].sensors[0].noise.heading_sigma_deg", "[0, 90] deg"),
         ({"boats": [{"sensors": [{"type": "imu", "latency": -0.01}]}]},
          "boats[0].sensors[0].latency", "[0, 60] s"),
         ({"boats": [{"sensors": [{"type": "gnss", "latency": math.inf}]}]},
@@ -416,6 +424,17 @@ def test_a_gnss_takes_its_outages():
     sc = parse_scenario({"boats": [{"sensors": [{"type": "imu", "dropout": 0.25}]}]})
     assert sc.boats[0].sensors[0].dropout == 0.25
     assert sc.boats[0].sensors[0].latency == 0.0
+
+
+def test_a_gnss_takes_a_heading_baseline_and_its_sigma():
+    sc = parse_scenario({"boats": [{"sensors": [
+        {"type": "gnss", "heading_baseline": [1.5, 0, 0.1],
+         "noise": {"heading_sigma_deg": 0.4}}, {"type": "gnss", "name": "plain"}]}]})
+    dual, plain = sc.boats[0].sensors
+    assert dual.heading_baseline.tolist() == [1.5, 0.0, 0.1]
+    assert dual.noise.heading_sigma == pytest.approx(math.radians(0.4))
+    assert plain.heading_baseline is None
+    assert plain.noise.heading_sigma == pytest.approx(math.radians(0.2))
 
 
 def test_every_sensor_takes_a_latency():

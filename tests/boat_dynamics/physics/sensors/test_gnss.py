@@ -1,10 +1,11 @@
-"""The GNSS model: WGS-84 conversion against closed forms; fix noise statistics."""
+"""The GNSS model: WGS-84 conversion against closed forms; fix noise statistics; heading."""
 
 import math
 
 import numpy as np
 import pytest
 
+from boat_dynamics.physics.body.rigid_body import quat_from_euler
 from boat_dynamics.physics.sensors import (
     Datum,
     GnssNoise,
@@ -13,6 +14,7 @@ from boat_dynamics.physics.sensors import (
     geodetic_to_enu,
     gnss_start,
     measure_gnss,
+    measure_heading,
     stream_key,
 )
 
@@ -90,3 +92,59 @@ def test_a_receiver_has_no_fix_in_its_outages_only():
     assert [has_fix(spec, t) for t in (0.0, 0.99, 1.0, 2.0, 2.5, 9.99, 10.0, 1e6)] == [
         True, True, False, False, True, True, False, False]
     assert has_fix(GnssSpec(), 5.0)  # no outages: always a fix
+
+
+def _dual(baseline, sigma_deg=0.0):
+    return GnssSpec(noise=GnssNoise(heading_sigma=math.radians(sigma_deg)),
+                    heading_baseline=None if baseline is None else np.array(baseline, float))
+
+
+@pytest.mark.parametrize("yaw_deg", [-175.0, -60.0, 0.0, 33.0, 179.5])
+@pytest.mark.parametrize("baseline", [[1.0, 0.0, 0.0], [-0.3, 0.8, 0.2], [0.0, -1.5, 0.0]])
+def test_a_level_boat_s_baseline_gives_its_yaw_whatever_the_mounting(yaw_deg, baseline):
+    # psi = atan2(w_y, w_x) - atan2(b_y, b_x), w = R b: the boat's yaw when level
+    yaw = measure_heading(_dual(baseline), stream_key(0, "a", "g"), 3,
+                          quat_from_euler(0.0, 0.0, math.radians(yaw_deg)))
+    assert math.remainder(yaw - math.radians(yaw_deg), 2 * math.pi) == pytest.approx(0.0,
+                                                                                    abs=1e-12)
+    assert -math.pi <= yaw <= math.pi
+
+
+def test_a_fore_and_aft_baseline_ignores_roll_and_a_tilted_oblique_one_turns():
+    key = stream_key(0, "a", "g")
+    q = quat_from_euler(0.4, 0.0, 1.0)
+    assert measure_heading(_dual([1.0, 0.0, 0.0]), key, 0, q) == pytest.approx(1.0, abs=1e-12)
+    # rolled by r then pitched by p (R = Ry(p) Rx(r)), a baseline (1, 1, 0) goes to
+    # (cos p + sin p sin r, cos r, .): its heading turns from pi / 4 to atan2 of those
+    r, p = 0.3, 0.2
+    expected = (math.atan2(math.cos(r), math.cos(p) + math.sin(p) * math.sin(r))
+                - math.pi / 4)
+    assert measure_heading(_dual([1.0, 1.0, 0.0]), key, 0, quat_from_euler(r, p, 0.0)) == (
+        pytest.approx(expected, abs=1e-12))
+
+
+def test_no_baseline_or_one_too_steep_gives_no_heading():
+    key, level = stream_key(0, "a", "g"), quat_from_euler(0.0, 0.0, 0.0)
+    assert measure_heading(_dual(None), key, 0, level) is None
+    assert measure_heading(_dual([0.05, 0.0, 1.0]), key, 0, level) is None  # 2.9 deg off vertical
+    # a boat on its beam ends: an athwartship baseline points up
+    assert measure_heading(_dual([0.0, 1.0, 0.0]), key, 0,
+                           quat_from_euler(math.pi / 2, 0.0, 0.0)) is None
+
+
+def test_heading_noise_has_its_sigma_and_leaves_the_fixes_as_they_were():
+    sigma, n = 0.5, 20000
+    spec, key = _dual([1.0, 0.0, 0.0], sigma), stream_key(4, "alpha", "gnss")
+    q = quat_from_euler(0.0, 0.0, 0.7)
+    errors = np.array([measure_heading(spec, key, k, q) - 0.7 for k in range(n)])
+    s = math.radians(sigma)
+    assert abs(errors.mean()) < 4 * s / math.sqrt(n)
+    assert errors.std() == pytest.approx(s, rel=4 / math.sqrt(2 * n))
+    # the fixes of a receiver with a heading are those of one without (draws apart)
+    plain = GnssSpec()
+    a, b = gnss_start(spec, key), gnss_start(plain, key)
+    for _ in range(5):
+        fa, a = measure_gnss(spec, key, a, Datum(), np.zeros(3), np.zeros(3))
+        fb, b = measure_gnss(plain, key, b, Datum(), np.zeros(3), np.zeros(3))
+        assert (fa.latitude, fa.longitude, fa.altitude) == (fb.latitude, fb.longitude,
+                                                            fb.altitude)
