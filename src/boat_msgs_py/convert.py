@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import array
 import math
 
 import numpy as np
@@ -22,7 +23,16 @@ from geometry_msgs.msg import (
     WrenchStamped,
 )
 from nav_msgs.msg import Odometry
-from sensor_msgs.msg import Imu, MagneticField, NavSatFix, NavSatStatus, Range
+from sensor_msgs.msg import (
+    Imu,
+    LaserScan,
+    MagneticField,
+    NavSatFix,
+    NavSatStatus,
+    PointCloud2,
+    PointField,
+    Range,
+)
 from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 
@@ -31,6 +41,7 @@ from boat_dynamics.physics.sensors import (
     DepthSounderSpec,
     GnssReading,
     ImuReading,
+    LidarSpec,
     MagnetometerReading,
     OdometryReading,
 )
@@ -48,6 +59,8 @@ __all__ = [
     "gnss_heading",
     "gnss_velocity",
     "imu",
+    "laser_scan",
+    "lidar_points",
     "lockstep_grant",
     "magnetic_field",
     "nav_sat_fix",
@@ -217,6 +230,43 @@ def depth_range(stamp: Time, frame: str, spec: DepthSounderSpec, reading: DepthR
                  field_of_view=float(spec.field_of_view), min_range=float(spec.min_range),
                  max_range=float(spec.max_range), range=float(reading.range),
                  variance=float(reading.variance))
+
+
+def laser_scan(stamp: Time, frame: str, spec: LidarSpec, ranges: np.ndarray) -> LaserScan:
+    """sensor_msgs/LaserScan of a one-ring lidar's scan: m, rad, counter-clockwise from x.
+
+    No return: +inf (REP-117). ``scan_time``: the period between scans.
+    """
+    az = spec.azimuths
+    step = float(az[1] - az[0]) if az.shape[0] > 1 else 0.0
+    return LaserScan(header=_header(stamp, frame), angle_min=float(az[0]),
+                     angle_max=float(az[-1]), angle_increment=step, time_increment=0.0,
+                     scan_time=1.0 / spec.rate_hz, range_min=float(spec.min_range),
+                     range_max=float(spec.max_range),
+                     ranges=array.array("f", np.asarray(ranges, dtype=np.float32).tobytes()))
+
+
+#: PointCloud2 fields x, y, z (float32, m, the sensor's frame).
+_XYZ = [PointField(name=n, offset=4 * k, datatype=PointField.FLOAT32, count=1)
+        for k, n in enumerate("xyz")]
+
+
+def lidar_points(stamp: Time, frame: str, directions: np.ndarray, ranges: np.ndarray
+                 ) -> PointCloud2:
+    """sensor_msgs/PointCloud2 (x, y, z float32, m, sensor frame) of a lidar's returns.
+
+    Args:
+        stamp: when the scan was taken.
+        frame: the sensor's frame.
+        directions: (R, 3) its rays' unit directions, sensor frame.
+        ranges: (R,) m (inf: no return, left out).
+    """
+    hit = np.isfinite(ranges)
+    points = (directions[hit] * ranges[hit, None]).astype(np.float32)
+    return PointCloud2(header=_header(stamp, frame), height=1, width=points.shape[0],
+                       fields=_XYZ, is_bigendian=False, point_step=12,
+                       row_step=12 * points.shape[0], is_dense=True,
+                       data=array.array("B", points.tobytes()))
 
 
 def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading, fix: bool = True) -> NavSatFix:

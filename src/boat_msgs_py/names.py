@@ -49,6 +49,8 @@ __all__ = [
     "gnss_vel_topic",
     "imu_topic",
     "is_command_topic",
+    "points_topic",
+    "scan_topic",
     "sensor_data_topic",
     "sensor_frame",
     "thruster_topic",
@@ -177,6 +179,16 @@ def sensor_data_topic(boat: str, sensor: str) -> str:
 def gnss_fix_topic(boat: str, sensor: str) -> str:
     """sensor_msgs/NavSatFix of a GNSS receiver named ``sensor``: ``<boat>/<sensor>/fix``."""
     return boat_topic(boat, f"{sensor}/fix")
+
+
+def scan_topic(boat: str, sensor: str) -> str:
+    """sensor_msgs/LaserScan of a one-ring lidar: ``<boat>/<sensor>/scan``."""
+    return boat_topic(boat, f"{sensor}/scan")
+
+
+def points_topic(boat: str, sensor: str) -> str:
+    """sensor_msgs/PointCloud2 of a lidar of several rings: ``<boat>/<sensor>/points``."""
+    return boat_topic(boat, f"{sensor}/points")
 
 
 def gnss_heading_topic(boat: str, sensor: str) -> str:

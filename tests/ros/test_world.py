@@ -1,5 +1,7 @@
 """The world over ROS 2: the obstacles drawn once (latched), a boat's contact events and push."""
 
+import math
+
 import numpy as np
 import pytest
 import yaml
@@ -75,3 +77,36 @@ def test_two_boats_that_meet_report_each_other(boatsim, tmp_path):
     gap = [mb.pose.pose.position.x - ma.pose.pose.position.x
            for (_, ma), (_, mb) in zip(msgs["/a/odom"], msgs["/b/odom"], strict=False)]
     assert min(gap) > 3.8
+
+
+def test_a_lidar_sees_the_pier_and_a_scanner_the_other_boat(boatsim, tmp_path):
+    # A 3-D lidar (4 rings) and a 2-D scanner 0.3 m above the hull's middle of a boat at
+    # rest (its deck is at 0.5 m), its bow 6 m from the pier's face (x = 8): the scanner's
+    # ray ahead reads 8 m; another boat 10 m to port, its side 9 m away, is its ray to port.
+    path, bag = tmp_path / "lidar.yaml", tmp_path / "bag"
+    path.write_text(yaml.safe_dump({
+        "simulation": {"duration": 1.0}, "ocean": {},
+        "world": {"obstacles": [PIER]},
+        "boats": [{"name": "a", "sensors": [
+                      {"type": "lidar", "name": "scanner", "samples": 4,
+                       "position": [0.0, 0.0, 0.3], "noise": {"range_sigma": 0.0}},
+                      {"type": "lidar", "name": "lidar", "samples": 90, "rings": 4,
+                       "vertical_fov_deg": 10.0, "position": [0.0, 0.0, 0.3]}]},
+                  {"name": "b", "initial_pose": {"position": [0.0, 10.0, 0.0]}}]}))
+    sim = boatsim("run", str(path), "--fast", "--record", str(bag))
+    assert sim.wait(timeout=120) == 0, sim.output()
+    msgs = read_bag(bag, ["/a/scanner/scan", "/a/lidar/points"])
+    scans = [m for _, m in msgs["/a/scanner/scan"]]
+    assert len(scans) == 10  # 10 Hz over 1 s (a reading needs a step before it)
+    scan = scans[-1]
+    assert scan.header.frame_id == "a/scanner_link"
+    # azimuths -180, -90, 0, 90 deg: behind and to starboard open water; ahead the pier,
+    # to port the other boat's side (1 m off its middle); the boats ride a few cm
+    assert math.isinf(scan.ranges[0]) and math.isinf(scan.ranges[1])
+    assert scan.ranges[2] == pytest.approx(8.0, abs=0.05)
+    assert scan.ranges[3] == pytest.approx(9.0, abs=0.05)
+    cloud = msgs["/a/lidar/points"][-1][1]
+    assert cloud.width > 10 and cloud.point_step == 12
+    points = np.frombuffer(bytes(cloud.data), dtype=np.float32).reshape(-1, 3)
+    ahead = points[np.abs(points[:, 1]) < 0.5]
+    assert np.all(np.abs(ahead[:, 0] - 8.0) < 0.3)  # the pier's face, ahead

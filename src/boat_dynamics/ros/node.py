@@ -314,7 +314,8 @@ class DynamicsNode(Node):
         self.outputs = FleetPublisher(self, scenario.boats, scenario.simulation, self._tap,
                                       self._graph, stopped,
                                       collisions=bool(scenario.world.obstacles)
-                                      or len(scenario.boats) > 1)
+                                      or len(scenario.boats) > 1, world=scenario.world,
+                                      footprints=self._system.footprints)
         self.collisions = CollisionEvents(self, list(scenario.boats), scenario.world, self._tap)
         self.boats = []
         for i, spec in enumerate(scenario.boats):
@@ -720,7 +721,7 @@ class DynamicsNode(Node):
         if self._before is not None:
             self.outputs.sensor_readings(lambda rate: self._due(k, self._rate, rate), sec,
                                          nanosec, self._system.center_of_mass, self._before,
-                                         self._state, self.sea.depth)
+                                         self._state, self.sea.depth, self.sea)
         if self._due(k, self._rate, self._diag_rate):
             forces = self._forces
             if forces is None:  # before the first step: the forces at the initial state

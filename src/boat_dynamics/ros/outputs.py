@@ -24,6 +24,8 @@ from rclpy.node import Node
 from boat_dynamics.physics.core.system import FleetForces, FleetState
 from boat_dynamics.physics.scenario import BoatSpec
 from boat_dynamics.physics.scenario.specs import SimulationSettings
+from boat_dynamics.physics.world.footprints import Footprints
+from boat_dynamics.physics.world.obstacles import World
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
 from boat_msgs_py import names
 from boat_msgs_py.cdr import (
@@ -37,6 +39,7 @@ from boat_msgs_py.cdr import (
 )
 from boat_msgs_py.qos import DIAGNOSTICS_QOS, STATE_QOS
 from boat_msgs_py.tap import SUBSCRIBER_CHECK_PERIOD, GraphWatch, Tap, TappedPublisher
+from ocean_sim.physics.waves import WaveField
 
 __all__ = ["FleetPublisher", "StartInterrupted"]
 
@@ -59,11 +62,15 @@ class FleetPublisher:
         graph: wrench topics advertised once someone subscribes (None: all from the start).
         stopped: checked between boats: a large fleet's start-up stops on Ctrl-C (raises
             :class:`StartInterrupted`) instead of making every boat's publishers first.
+        collisions: make every boat's wrench/collision (obstacles, or other boats).
+        world: the obstacles the lidars see.
+        footprints: the hulls the lidars see.
     """
 
     def __init__(self, node: Node, boats: Sequence[BoatSpec], sim: SimulationSettings,
                  tap: Tap | None, graph: GraphWatch | None,
-                 stopped: Callable[[], bool] | None = None, collisions: bool = False) -> None:
+                 stopped: Callable[[], bool] | None = None, collisions: bool = False,
+                 world: World | None = None, footprints: Footprints | None = None) -> None:
         self.pubs: list[dict[str, TappedPublisher]] = []
         templates: list[dict] = []
         for i, spec in enumerate(boats):  # 36 ms a boat with 1000 (DDS endpoints)
@@ -91,7 +98,7 @@ class FleetPublisher:
                                               STATE_QOS, tap)
             self._state = FleetStateTemplate(names.WORLD_FRAME, [b.name for b in boats])
         self.transforms = TransformPublisher(node, list(boats), tap)
-        self.sensors = SensorPublisher(node, list(boats), sim, tap)
+        self.sensors = SensorPublisher(node, list(boats), sim, tap, world, footprints)
 
     def states(self, sec: int, nanosec: int, values: np.ndarray, now: float,
                publish_tf: bool) -> None:
@@ -164,14 +171,15 @@ class FleetPublisher:
 
     def sensor_readings(self, due: Callable[[float], bool], sec: int, nanosec: int,
                         center_of_mass: np.ndarray, before: FleetState,
-                        after: FleetState, depth: float = math.inf) -> None:
+                        after: FleetState, depth: float = math.inf,
+                        sea: WaveField | None = None) -> None:
         """Every sensor whose rate is ``due`` (:meth:`SensorPublisher.publish_due`), stamped.
 
-        ``depth``: m, the ocean's (depth sounders).
+        ``depth``: m, the ocean's (depth sounders); ``sea``: the waves (lidars).
         """
         if len(self.sensors):
             self.sensors.publish_due(due, Time(sec=sec, nanosec=nanosec), center_of_mass,
-                                     before, after, depth)
+                                     before, after, depth, sea)
 
     def _publish_wanted(self, topic_key: str, template_key: str, sec: int, nanosec: int,
                         values: np.ndarray, now: float) -> None:

@@ -16,7 +16,7 @@ import numpy as np
 from geometry_msgs.msg import TwistWithCovarianceStamped
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
-from sensor_msgs.msg import Imu, MagneticField, NavSatFix, Range
+from sensor_msgs.msg import Imu, LaserScan, MagneticField, NavSatFix, PointCloud2, Range
 from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.body.rigid_body import rotation_matrix
@@ -29,6 +29,7 @@ from boat_dynamics.physics.sensors import (
     DepthSounderSpec,
     GnssSpec,
     ImuSpec,
+    LidarSpec,
     MagnetometerSpec,
     OdometrySpec,
     SensorSpec,
@@ -40,11 +41,15 @@ from boat_dynamics.physics.sensors import (
     measure_gnss,
     measure_heading,
     measure_imu,
+    measure_lidar,
     measure_magnetometer,
     measure_odometry,
     stream_key,
     true_motion,
 )
+from boat_dynamics.physics.sensors.lidar import lidar_directions
+from boat_dynamics.physics.world.footprints import Footprints
+from boat_dynamics.physics.world.obstacles import World
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import (
@@ -52,6 +57,8 @@ from boat_msgs_py.convert import (
     gnss_heading,
     gnss_velocity,
     imu,
+    laser_scan,
+    lidar_points,
     magnetic_field,
     nav_sat_fix,
     noisy_odometry,
@@ -59,6 +66,7 @@ from boat_msgs_py.convert import (
 )
 from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
+from ocean_sim.physics.waves import WaveField, sample_surface
 
 __all__ = ["SensorPublisher", "TransformPublisher"]
 
@@ -129,11 +137,16 @@ class SensorPublisher:
         boats: the boats, in fleet order.
         sim: the simulation settings (seed, datum, gravity, physics rate).
         tap: the recorder's tap, or None.
+        world: the obstacles a lidar sees (None: none).
+        footprints: the boats' hulls a lidar sees (None: none).
     """
 
     def __init__(self, node: Node, boats: list[BoatSpec], sim: SimulationSettings,
-                 tap: Tap | None) -> None:
+                 tap: Tap | None, world: World | None = None,
+                 footprints: Footprints | None = None) -> None:
         self._sim = sim
+        self._world = World() if world is None else world
+        self._footprints = footprints  # the hulls a lidar sees
         self._sensors: list[tuple[int, _Sensor]] = []
         for index, boat in enumerate(boats):
             for spec in boat.sensors:
@@ -185,7 +198,8 @@ class SensorPublisher:
                 sensor.state = restore(sensor.state, arrays, f"sensor{k}.")
 
     def publish_due(self, due, stamp, center_of_mass: np.ndarray, before: FleetState,
-                    after: FleetState, depth: float = math.inf) -> None:
+                    after: FleetState, depth: float = math.inf,
+                    sea: WaveField | None = None) -> None:
         """Read and publish the sensors ``due(rate_hz)`` says are due at this step.
 
         First the messages of sensors with a latency that are due now (taken ``latency`` s
@@ -198,6 +212,7 @@ class SensorPublisher:
             before: the boats' state at the start of the last step.
             after: their state now.
             depth: m, the ocean's (the sea floor's depth below the mean level; inf: deep).
+            sea: the waves a lidar's rays meet (None: calm water).
         """
         self._t = float(after.t)
         for sensor in self._delayed:
@@ -220,6 +235,8 @@ class SensorPublisher:
                 self._magnetometer(sensor, stamp, now[index], send)
             elif isinstance(sensor.spec, DepthSounderSpec):
                 self._depth(sensor, stamp, center_of_mass[index], now[index], depth, send)
+            elif isinstance(sensor.spec, LidarSpec):
+                self._lidar(sensor, stamp, index, center_of_mass, after, sea, send)
             else:
                 self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
@@ -275,6 +292,27 @@ class SensorPublisher:
         if send:
             self._send(sensor, 0, depth_range(stamp, sensor.frame, sensor.spec, reading))
 
+    def _lidar(self, sensor: _Sensor, stamp, index: int, center_of_mass: np.ndarray,
+               after: FleetState, sea: WaveField | None, send: bool) -> None:
+        """A lidar's scan: the world, every other hull, the sea at ``after``'s time."""
+        rot = rotation_matrix(after.orientation)
+        ref = after.position - np.einsum("bij,bj->bi", rot, center_of_mass)
+        hulls = None if self._footprints is None else (self._footprints, rot, ref)
+        t = float(after.t)
+
+        def heights(xy: np.ndarray) -> np.ndarray:
+            return (np.zeros(xy.shape[0]) if sea is None
+                    else sample_surface(sea, xy, t).heights)
+
+        ranges = measure_lidar(sensor.spec, sensor.key, sensor.state, rot[index], ref[index],
+                               self._world, hulls, heights, own=index)
+        sensor.state += 1
+        if send:
+            spec = sensor.spec
+            self._send(sensor, 0, laser_scan(stamp, sensor.frame, spec, ranges)
+                       if spec.rings == 1 else
+                       lidar_points(stamp, sensor.frame, lidar_directions(spec), ranges))
+
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
                   send: bool) -> None:
         rot = rotation_matrix(after.orientation)
@@ -307,6 +345,11 @@ def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: T
                                  SENSOR_QOS, tap)], 0)
     if isinstance(spec, DepthSounderSpec):
         return ([TappedPublisher(node, Range, names.sensor_data_topic(boat, spec.name),
+                                 SENSOR_QOS, tap)], 0)
+    if isinstance(spec, LidarSpec):
+        return ([TappedPublisher(node, LaserScan, names.scan_topic(boat, spec.name), SENSOR_QOS,
+                                 tap) if spec.rings == 1 else
+                 TappedPublisher(node, PointCloud2, names.points_topic(boat, spec.name),
                                  SENSOR_QOS, tap)], 0)
     return ([TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS,
                              tap)], 0)

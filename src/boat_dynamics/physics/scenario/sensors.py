@@ -11,7 +11,9 @@ import numpy as np
 
 from boat_dynamics.physics.scenario.read import (
     ROS_NAME_RULE,
+    choice,
     describe,
+    integer,
     is_ros_name,
     mapping,
     number,
@@ -27,21 +29,23 @@ from boat_dynamics.physics.sensors import (
     GnssSpec,
     ImuSpec,
     InertialNoise,
+    LidarSpec,
     MagnetometerSpec,
     OdometryNoise,
     OdometrySpec,
     SensorSpec,
 )
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
+from boat_dynamics.physics.sensors.lidar import SEA_RETURNS
 
 __all__ = ["MAX_LATENCY", "MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_field_block",
            "sensors_block"]
 
 #: The ``type`` of a sensor.
-SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder")
+SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder", "lidar")
 #: Hz, each type's default ``rate_hz``.
 _RATES = {"imu": 100.0, "gnss": 5.0, "odometry": 50.0, "magnetometer": 20.0,
-          "depth_sounder": 10.0}
+          "depth_sounder": 10.0, "lidar": 10.0}
 
 
 def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
@@ -121,10 +125,13 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
 
 #: s, the longest ``latency``.
 MAX_LATENCY = 60.0
-#: The keys of one type of sensor only: key -> that type.
-_TYPE_KEYS = {"outages": "gnss", "heading_baseline": "gnss",
-              "field_of_view_deg": "depth_sounder", "min_range": "depth_sounder",
-              "max_range": "depth_sounder"}
+#: The keys of some types of sensor only: key -> those types.
+_TYPE_KEYS = {"outages": ("gnss",), "heading_baseline": ("gnss",),
+              "field_of_view_deg": ("depth_sounder",), "min_range": ("depth_sounder", "lidar"),
+              "max_range": ("depth_sounder", "lidar"), "samples": ("lidar",),
+              "horizontal_fov_deg": ("lidar",), "rings": ("lidar",),
+              "vertical_fov_deg": ("lidar",), "sea": ("lidar",),
+              "clutter_probability": ("lidar",)}
 
 
 def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
@@ -141,12 +148,13 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
              "bias_correlation_time, velocity_sigma, heading_sigma_deg; odometry: "
              "position_sigma, orientation_sigma_deg, velocity_sigma, "
              "angular_velocity_sigma_deg; magnetometer: sigma, hard_iron, soft_iron; "
-             "depth_sounder: range_sigma",
+             "depth_sounder, lidar: range_sigma",
              default_doc="each key's default below")
     noise = mapping(d.get("noise"), f"{k}.noise")
-    for only_key, only_type in _TYPE_KEYS.items():
-        if kind != only_type and only_key in d:
-            raise ScenarioError(f"{k}.{only_key}", d[only_key], f"only for a {only_type}")
+    for only_key, only_types in _TYPE_KEYS.items():
+        if kind not in only_types and only_key in d:
+            raise ScenarioError(f"{k}.{only_key}", d[only_key],
+                                f"only for a {' or '.join(only_types)}")
     dropout = number(d, "dropout", k, 0.0, 0.0, 1.0,
                      unit="(the probability that a reading is lost)")
     latency = number(d, "latency", k, 0.0, 0.0, MAX_LATENCY,
@@ -157,6 +165,8 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
         spec = _magnetometer(name, rate, position, noise, f"{k}.noise")
     elif kind == "depth_sounder":
         spec = _depth_sounder(name, rate, position, d, noise, k)
+    elif kind == "lidar":
+        spec = _lidar(name, rate, position, d, noise, k)
     elif kind == "gnss":
         spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
                         _outages(d.get("outages"), f"{k}.outages"),
@@ -179,16 +189,60 @@ def _depth_sounder(name: str, rate: float, position: np.ndarray, d: Mapping[str,
     only(noise, f"{key}.noise", ("range_sigma",))
     fov = number(d, "field_of_view_deg", key, round(math.degrees(default.field_of_view), 6),
                  0.0, 180.0, low_open=True, unit="deg, the beam's full cone (a depth_sounder's)")
-    nearest = number(d, "min_range", key, default.min_range, 0.0, 1000.0,
-                     unit="m (a depth_sounder's: nearer reads -inf)")
-    farthest = number(d, "max_range", key, default.max_range, 0.0, 12000.0, low_open=True,
-                      unit="m (a depth_sounder's: farther, or no echo, reads +inf)")
-    if farthest <= nearest:
-        raise ScenarioError(f"{key}.max_range", farthest,
-                            f"must be greater than min_range ({nearest:g} m)")
+    nearest, farthest = _ranges(d, key, default.min_range, default.max_range)
     sigma = number(noise, "range_sigma", f"{key}.noise", default.range_sigma, 0.0, 100.0,
                    unit="m")
     return DepthSounderSpec(name, rate, position, math.radians(fov), nearest, farthest, sigma)
+
+
+def _ranges(d: Mapping[str, Any], key: str, nearest: float, farthest: float
+            ) -> tuple[float, float]:
+    """A depth sounder's or a lidar's ``min_range`` and ``max_range`` (m), the defaults given."""
+    low = number(d, "min_range", key, nearest, 0.0, 1000.0,
+                 unit="m (a depth_sounder reads -inf nearer; a lidar, no return)",
+                 default_doc="depth_sounder 0.5, lidar 0.3")
+    high = number(d, "max_range", key, farthest, 0.0, 12000.0, low_open=True,
+                  unit="m (farther, or no echo: a depth_sounder reads +inf; a lidar, no "
+                  "return)", default_doc="depth_sounder 200, lidar 100")
+    if high <= low:
+        raise ScenarioError(f"{key}.max_range", high, f"must be greater than min_range "
+                                                      f"({low:g} m)")
+    return low, high
+
+
+#: The most rays a lidar casts a scan (rings x samples).
+MAX_RAYS = 200_000
+
+
+def _lidar(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
+           noise: Mapping[str, Any], key: str) -> LidarSpec:
+    """A scanner (:class:`LidarSpec`): its rays, ranges and sea; ``noise: {range_sigma}`` (m).
+
+    ``samples``, ``horizontal_fov_deg``, ``rings``, ``vertical_fov_deg``, ``min_range``,
+    ``max_range``, ``sea``, ``clutter_probability``.
+    """
+    default = LidarSpec()
+    only(noise, f"{key}.noise", ("range_sigma",))
+    samples = integer(d, "samples", key, default.samples, 1, MAX_RAYS,
+                      note="(a lidar's rays per ring)")
+    rings = integer(d, "rings", key, default.rings, 1, 256,
+                    note="(a lidar's: 1 a 2-D scanner, LaserScan; more a 3-D one, PointCloud2)")
+    if samples * rings > MAX_RAYS:
+        raise ScenarioError(f"{key}.samples", samples, f"samples x rings must be at most "
+                            f"{MAX_RAYS} (rings: {rings})")
+    horizontal = number(d, "horizontal_fov_deg", key, 360.0, 0.0, 360.0, low_open=True,
+                        unit="deg (a lidar's, centred ahead)")
+    vertical = number(d, "vertical_fov_deg", key, 30.0, 0.0, 180.0,
+                      unit="deg (a lidar's rings' spread, centred on level; rings > 1)")
+    nearest, farthest = _ranges(d, key, default.min_range, default.max_range)
+    sea = choice(d, "sea", key, default.sea, SEA_RETURNS)
+    clutter = number(d, "clutter_probability", key, default.clutter_probability, 0.0, 1.0,
+                     unit="(a lidar's share of the sea's rays that return, with sea: clutter)")
+    sigma = number(noise, "range_sigma", f"{key}.noise", default.range_sigma, 0.0, 100.0,
+                   unit="m")
+    return LidarSpec(name, rate, position, samples, math.radians(horizontal), rings,
+                     math.radians(vertical) if rings > 1 else 0.0, nearest, farthest, sigma,
+                     sea, clutter)
 
 
 _TRIAD_KEYS = ("noise_density", "random_walk", "bias_instability", "bias_correlation_time")

@@ -36,6 +36,7 @@ from boat_dynamics.physics.sensors.imu import (
     measure_imu,
     true_motion,
 )
+from boat_dynamics.physics.sensors.lidar import LidarSpec, measure_lidar
 from boat_dynamics.physics.sensors.magnetometer import (
     EarthField,
     MagnetometerReading,
@@ -52,11 +53,12 @@ from boat_dynamics.physics.sensors.odometry import (
 
 __all__ = ["Datum", "DelayLine", "DepthReading", "DepthSounderSpec", "EarthField", "GnssNoise",
            "GnssReading", "GnssSpec", "GnssState", "ImuReading", "ImuSpec", "ImuState",
-           "InertialNoise", "MagnetometerReading", "MagnetometerSpec", "OdometryNoise",
+           "InertialNoise", "LidarSpec", "MagnetometerReading", "MagnetometerSpec", "OdometryNoise",
            "OdometryReading", "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",
            "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_depth",
-           "measure_gnss", "measure_heading", "measure_imu", "measure_magnetometer",
-           "measure_odometry", "slant_range", "stream_key", "true_motion"]
+           "measure_gnss", "measure_heading", "measure_imu", "measure_lidar",
+           "measure_magnetometer", "measure_odometry", "slant_range", "stream_key", "true_motion"]
 
 #: A sensor of a boat's ``sensors`` list.
-SensorSpec = ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec
+SensorSpec = (ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec
+              | LidarSpec)

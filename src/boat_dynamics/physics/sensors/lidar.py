@@ -57,6 +57,7 @@ class LidarSpec:
         sea: what the sea returns.
         clutter_probability: the share of the sea's rays that return (``sea: clutter``).
         dropout: the probability that a scan is lost.
+        latency: s from a scan to its publication.
     """
 
     name: str = "lidar"
@@ -72,6 +73,7 @@ class LidarSpec:
     sea: SeaReturn = "none"
     clutter_probability: float = 0.05
     dropout: float = 0.0
+    latency: float = 0.0
 
     @property
     def azimuths(self) -> np.ndarray:
@@ -98,7 +100,7 @@ def lidar_directions(spec: LidarSpec) -> np.ndarray:
 def measure_lidar(spec: LidarSpec, key: np.ndarray, sample: int, rotation: np.ndarray,
                   reference: np.ndarray, world: World,
                   hulls: tuple[Footprints, np.ndarray, np.ndarray] | None,
-                  heights: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+                  heights: Callable[[np.ndarray], np.ndarray], own: int = -1) -> np.ndarray:
     """Scan number ``sample``: (rings * samples,) m ranges, ring after ring (inf: none).
 
     Args:
@@ -108,12 +110,13 @@ def measure_lidar(spec: LidarSpec, key: np.ndarray, sample: int, rotation: np.nd
         rotation: (3, 3) its boat's body-to-world rotation.
         reference: (3,) m, its boat's reference point, world frame.
         world: the obstacles.
-        hulls: the other boats (footprints, (B, 3, 3) rotations, (B, 3) reference points).
+        hulls: the boats (footprints, (B, 3, 3) rotations, (B, 3) reference points).
         heights: (N, 2) m world x, y -> (N,) m, the sea surface's height there.
+        own: the scanner's boat among ``hulls`` (not seen), or -1.
     """
     d = lidar_directions(spec) @ rotation.T
     o = np.broadcast_to(reference + rotation @ spec.position, d.shape)
-    solid = cast(world, o, d, spec.max_range, hulls)
+    solid = cast(world, o, d, spec.max_range, hulls, own)
     water = water_range(o, d, heights)
     ranges = solid.copy()
     sea = water < solid

@@ -19,7 +19,8 @@ __all__ = ["cast", "hull_ranges", "obstacle_ranges", "water_range"]
 
 
 def cast(world: World, origins: np.ndarray, directions: np.ndarray, max_range: float,
-         hulls: tuple[Footprints, np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+         hulls: tuple[Footprints, np.ndarray, np.ndarray] | None = None, skip: int = -1
+         ) -> np.ndarray:
     """(R,) m: how far each ray goes before it hits an obstacle or a hull (inf: nothing).
 
     Args:
@@ -28,11 +29,12 @@ def cast(world: World, origins: np.ndarray, directions: np.ndarray, max_range: f
         directions: (R, 3) unit vectors, world frame.
         max_range: m: hits beyond are not hits.
         hulls: (footprints, (B, 3, 3) body-to-world rotations, (B, 3) m reference points) of
-            the boats the rays may hit (leave the sensor's own boat out), or None.
+            the boats the rays may hit, or None.
+        skip: the boat of ``hulls`` the rays leave from (not hit), or -1.
     """
     best = obstacle_ranges(world, origins, directions)
     if hulls is not None:
-        best = np.minimum(best, hull_ranges(*hulls, origins, directions))
+        best = np.minimum(best, hull_ranges(*hulls, origins, directions, skip))
     return np.where(best <= max_range, best, np.inf)
 
 
@@ -89,7 +91,7 @@ def _top(height: float, o: np.ndarray, d: np.ndarray, inside) -> np.ndarray:
 
 
 def hull_ranges(footprints: Footprints, rotation: np.ndarray, reference: np.ndarray,
-                origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
+                origins: np.ndarray, directions: np.ndarray, skip: int = -1) -> np.ndarray:
     """(R,) m to the nearest hull prism along each ray (inf: none; a ray from inside: none).
 
     Args:
@@ -98,9 +100,12 @@ def hull_ranges(footprints: Footprints, rotation: np.ndarray, reference: np.ndar
         reference: (B, 3) m, their reference points, world frame.
         origins: (R, 3) m, world frame.
         directions: (R, 3) unit, world frame.
+        skip: a boat not hit (the rays' own), or -1.
     """
     best = np.full(origins.shape[0], np.inf)
     for b in range(rotation.shape[0]):
+        if b == skip:
+            continue
         o = (origins - reference[b]) @ rotation[b]  # body frame of boat b
         d = directions @ rotation[b]
         normals = np.concatenate([np.column_stack([footprints.normals[b],

@@ -81,3 +81,24 @@ def test_out_of_its_ranges_it_reads_nothing():
     far = LidarSpec(samples=3, horizontal_fov=0.2, range_sigma=0.0, max_range=9.0)
     assert np.all(np.isinf(measure_lidar(far, KEY, 0, _level(), np.zeros(3), WALL, None,
                                          _flat)))
+
+
+def test_a_scenarios_lidar_is_read_with_its_keys_and_bad_ones_refused():
+    from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+
+    spec, = parse_scenario({"boats": [{"sensors": [{
+        "type": "lidar", "rings": 8, "samples": 720, "horizontal_fov_deg": 270,
+        "vertical_fov_deg": 20, "max_range": 50, "sea": "clutter",
+        "clutter_probability": 0.1, "noise": {"range_sigma": 0.03}}]}]}).boats[0].sensors
+    assert isinstance(spec, LidarSpec)
+    assert (spec.rings, spec.samples, spec.sea, spec.max_range) == (8, 720, "clutter", 50.0)
+    assert spec.horizontal_fov == pytest.approx(math.radians(270))
+    assert spec.vertical_fov == pytest.approx(math.radians(20))
+    for bad, key in (({"rings": 0}, "rings"), ({"samples": 1000, "rings": 256}, "samples"),
+                     ({"sea": "foam"}, "sea"), ({"min_range": 5, "max_range": 2}, "max_range"),
+                     ({"horizontal_fov_deg": 400}, "horizontal_fov_deg")):
+        with pytest.raises(ScenarioError) as err:
+            parse_scenario({"boats": [{"sensors": [{"type": "lidar", **bad}]}]})
+        assert err.value.key == f"boats[0].sensors[0].{key}"
+    with pytest.raises(ScenarioError, match="only for a lidar"):
+        parse_scenario({"boats": [{"sensors": [{"type": "imu", "rings": 4}]}]})
