@@ -372,10 +372,15 @@ def environment_from_msg(msg: EnvironmentMsg) -> Environment:
     return Environment(msg.current_speed, msg.current_direction, wind)
 
 
-def noisy_odometry(stamp: Time, child: str, reading: OdometryReading) -> Odometry:
-    """nav_msgs/Odometry of a noisy odometry reading, its covariances filled."""
+def noisy_odometry(stamp: Time, child: str, reading: OdometryReading,
+                   frame: str = WORLD_FRAME) -> Odometry:
+    """nav_msgs/Odometry of a noisy odometry reading, its covariances filled.
+
+    ``frame``: its pose's frame (``world``; a drifting odometry's ``<boat>/odom``).
+    """
     msg = odometry(stamp, child, reading.position, reading.orientation, reading.velocity,
                    reading.angular_velocity)
+    msg.header.frame_id = frame
     msg.pose.covariance = [float(x) for x in reading.pose_covariance.reshape(36)]
     msg.twist.covariance = [float(x) for x in reading.twist_covariance.reshape(36)]
     return msg

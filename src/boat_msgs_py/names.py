@@ -20,6 +20,7 @@ __all__ = [
     "FLEET_STATE",
     "LOCKSTEP",
     "LOCKSTEP_READY",
+    "MAP_FRAME",
     "ODOM",
     "PARAMETER_EVENTS",
     "POSE",
@@ -49,6 +50,7 @@ __all__ = [
     "gnss_vel_topic",
     "imu_topic",
     "is_command_topic",
+    "odom_frame",
     "points_topic",
     "scan_topic",
     "sensor_data_topic",
@@ -123,6 +125,8 @@ TF = "/tf"
 TF_STATIC = "/tf_static"
 
 WORLD_FRAME = "world"
+#: REP-105's map frame (``simulation.frames: rep105``): the world's, under it on /tf_static.
+MAP_FRAME = "map"
 
 #: The node of `boatsim record` (the --processes children wait until it subscribes to them).
 RECORDER_NODE = "boatsim_record"
@@ -154,6 +158,11 @@ def boat_of(topic: str, name: str) -> str | None:
 def wrench_topic(boat: str, source: str) -> str:
     """Absolute ``wrench/<source>`` topic of a boat."""
     return boat_topic(boat, f"wrench/{source}")
+
+
+def odom_frame(boat: str) -> str:
+    """A boat's REP-105 odometry frame: ``<boat>/odom`` (``odom`` for the root boat)."""
+    return f"{boat}/odom" if boat else "odom"
 
 
 def child_frame(boat: str) -> str:

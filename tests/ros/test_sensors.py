@@ -338,3 +338,39 @@ def test_a_sensor_s_latency_publishes_its_readings_that_much_later_stamped_when_
         rate = full / 2.0  # readings taken in (2 - latency, 2] s are due after the end
         assert len(late) == full - math.ceil(latency * rate - 1e-9)
         assert [repr(m) for _, m in late] == [repr(m) for _, m in now[:len(late)]]
+
+
+def test_rep105_frames_chain_map_odom_base_link_and_odom_drifts_with_the_odometry(
+        boatsim, tmp_path):
+    # simulation.frames: rep105 and a drifting odometry (10 Hz, 0.2 m/s velocity noise): /tf
+    # holds map -> alpha/odom and alpha/odom -> alpha/base_link; together they are the true
+    # pose (/alpha/odom, to 1e-9 m), odom -> base_link is the odometry's last reading, and
+    # map -> odom moves off the identity as the odometry drifts; world -> map on /tf_static.
+    data = {"simulation": {"seed": 3, "frames": "rep105"},
+            "boats": [{"name": "alpha", "commands": [{"t": 0.0, "thrust": 0.6, "rudder": 0.2}],
+                       "sensors": [{"type": "odometry", "name": "reckoning", "rate_hz": 10,
+                                    "drift": True, "noise": {"velocity_sigma": 0.2}}]}]}
+    path = tmp_path / "rep105.yaml"
+    path.write_text(yaml.safe_dump(data))
+    msgs = _run(boatsim, tmp_path, path, 4, "bag")
+    truth = {stamp: m.pose.pose for stamp, m in msgs["/alpha/odom"]}
+    links: dict = {}
+    for stamp, tf in msgs["/tf"]:
+        (t,) = tf.transforms
+        links.setdefault(stamp, {})[(t.header.frame_id, t.child_frame_id)] = t.transform
+    assert all(set(v) == {("map", "alpha/odom"), ("alpha/odom", "alpha/base_link")}
+               for v in links.values())
+    drift = []
+    for stamp, pair in links.items():
+        a, b = pair["map", "alpha/odom"], pair["alpha/odom", "alpha/base_link"]
+        ra = rotation_matrix(_quat(a.rotation))
+        position = _vec(a.translation) + ra @ _vec(b.translation)
+        np.testing.assert_allclose(position, _vec(truth[stamp].position), atol=1e-9)
+        np.testing.assert_allclose(ra @ rotation_matrix(_quat(b.rotation)),
+                                   rotation_matrix(_quat(truth[stamp].orientation)), atol=1e-9)
+        drift.append(np.linalg.norm(_vec(a.translation)))
+    assert drift[0] < 1e-9 < drift[-1]  # the same at the start, drifted by the end
+    readings = msgs["/alpha/reckoning"]
+    assert {m.header.frame_id for _, m in readings} == {"alpha/odom"}
+    (_, static), = msgs["/tf_static"]
+    assert ("world", "map") in {(t.header.frame_id, t.child_frame_id) for t in static.transforms}

@@ -97,7 +97,7 @@ class FleetPublisher:
             self._state_pub = TappedPublisher(node, FleetStateMsg, names.FLEET_STATE,
                                               STATE_QOS, tap)
             self._state = FleetStateTemplate(names.WORLD_FRAME, [b.name for b in boats])
-        self.transforms = TransformPublisher(node, list(boats), tap)
+        self.transforms = TransformPublisher(node, list(boats), tap, sim.frames)
         self.sensors = SensorPublisher(node, list(boats), sim, tap, world, footprints)
 
     def states(self, sec: int, nanosec: int, values: np.ndarray, now: float,
@@ -121,7 +121,15 @@ class FleetPublisher:
         for key, columns in (("pose", values[:, :7]), ("twist", values[:, 7:])):
             self._publish_wanted(key, key, sec, nanosec, columns, now)
         if publish_tf:
-            self.transforms.publish(sec, nanosec, values[:, :7], now)
+            self.transforms.publish(sec, nanosec, values[:, :7], now,
+                                    self._odometry_poses(values[:, :7]))
+
+    def _odometry_poses(self, truth: np.ndarray) -> np.ndarray | None:
+        """(B, 7) each boat's pose in its odom frame: its drifting odometry's, else the truth."""
+        poses = self.sensors.odometry_poses(truth.shape[0])
+        if poses is None:
+            return None
+        return np.where(np.isnan(poses[:, :1]), truth, poses)
 
     def wrenches(self, sec: int, nanosec: int, forces: FleetForces, now: float,
                  carriage: Callable[[int], np.ndarray] | None) -> None:

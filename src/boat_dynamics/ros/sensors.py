@@ -19,12 +19,14 @@ from rclpy.node import Node
 from sensor_msgs.msg import Imu, LaserScan, MagneticField, NavSatFix, PointCloud2, Range
 from tf2_msgs.msg import TFMessage
 
-from boat_dynamics.physics.body.rigid_body import rotation_matrix
+from boat_dynamics.physics.body.rigid_body import quat_multiply, rotation_matrix
 from boat_dynamics.physics.core.model import BoatState
 from boat_dynamics.physics.core.snapshot import SnapshotError, flatten, restore
 from boat_dynamics.physics.core.system import FleetState
 from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
+from boat_dynamics.physics.scenario.specs import TfFrames
 from boat_dynamics.physics.sensors import (
+    DeadReckoning,
     DelayLine,
     DepthSounderSpec,
     GnssSpec,
@@ -33,6 +35,7 @@ from boat_dynamics.physics.sensors import (
     MagnetometerSpec,
     OdometrySpec,
     SensorSpec,
+    dead_reckon,
     dropped,
     gnss_start,
     has_fix,
@@ -68,7 +71,7 @@ from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 from ocean_sim.physics.waves import WaveField, sample_surface
 
-__all__ = ["SensorPublisher", "TransformPublisher"]
+__all__ = ["SensorPublisher", "TransformPublisher", "map_to_odom"]
 
 _IDENTITY = np.array([0.0, 0.0, 0.0, 1.0])
 
@@ -86,24 +89,39 @@ class _Sensor:
 
 
 class TransformPublisher:
-    """``/tf`` (world -> each boat's base_link) and ``/tf_static`` (to every sensor's link).
+    """``/tf`` (the boats' poses) and ``/tf_static`` (every sensor's mounting).
+
+    ``frames: world``: ``world`` -> each ``<boat>/base_link``, the true pose. ``frames:
+    rep105``: ``map`` -> each ``<boat>/odom`` -> its ``<boat>/base_link`` (REP-105): the
+    boat's drifting odometry's pose in ``odom`` (the true pose where it has none), and
+    ``map`` -> ``odom`` what puts that on the true pose; ``world`` -> ``map``, the identity,
+    on /tf_static, so the topics in ``world`` stay in the same tree.
 
     Args:
         node: the owning node.
         boats: the boats, in fleet order.
         tap: the recorder's tap, or None.
+        frames: the tree.
     """
 
-    def __init__(self, node: Node, boats: list[BoatSpec], tap: Tap | None) -> None:
+    def __init__(self, node: Node, boats: list[BoatSpec], tap: Tap | None,
+                 frames: TfFrames = "world") -> None:
         self._pub = TappedPublisher(node, TFMessage, names.TF, TF_QOS, tap)
+        self._rep105 = frames == "rep105"
+        links = ([(names.MAP_FRAME, names.odom_frame(b.name)) for b in boats]
+                 + [(names.odom_frame(b.name), names.child_frame(b.name)) for b in boats]
+                 if self._rep105 else
+                 [(names.WORLD_FRAME, names.child_frame(b.name)) for b in boats])
         self._templates = []
-        for b in boats:  # each the last one relabelled (CdrTemplate.relabel)
-            self._templates.append(tf_template(names.WORLD_FRAME, names.child_frame(b.name),
+        for parent, child in links:  # each the last one relabelled (CdrTemplate.relabel)
+            self._templates.append(tf_template(parent, child,
                                                self._templates[-1] if self._templates else None))
-        self._fleet = FleetTemplate(self._templates)  # every boat's message in one pass
+        self._fleet = FleetTemplate(self._templates)  # every transform in one pass
         self._static = [(names.child_frame(b.name), names.sensor_frame(b.name, s.name),
                          s.position, _IDENTITY) for b in boats for s in b.sensors
                         if not isinstance(s, OdometrySpec)]
+        if self._rep105:
+            self._static.append((names.WORLD_FRAME, names.MAP_FRAME, np.zeros(3), _IDENTITY))
         self._static_pub = (TappedPublisher(node, TFMessage, names.TF_STATIC, TF_STATIC_QOS, tap)
                             if self._static else None)
 
@@ -112,8 +130,9 @@ class TransformPublisher:
         if self._static_pub is not None:
             self._static_pub.publish(tf_message(stamp, self._static))
 
-    def publish(self, sec: int, nanosec: int, poses: np.ndarray, now: float) -> None:
-        """``/tf``, one message per boat.
+    def publish(self, sec: int, nanosec: int, poses: np.ndarray, now: float,
+                odometry: np.ndarray | None = None) -> None:
+        """``/tf``, one message per transform.
 
         Only while someone subscribes or the run records.
 
@@ -122,11 +141,32 @@ class TransformPublisher:
             nanosec: stamp, ns part.
             poses: (K, 7) each boat's reference point (m, world) and orientation (x, y, z, w).
             now: s, time.monotonic().
+            odometry: (K, 7) each boat's pose in its odom frame (``rep105``; None: the true
+                pose, an odom frame on the map's).
         """
         if not self._pub.wanted(now):
             return
+        if self._rep105:
+            estimate = poses if odometry is None else odometry
+            poses = np.concatenate([map_to_odom(poses, estimate), estimate])
         for data in self._fleet.pack(sec, nanosec, poses):
             self._pub.publish(data)
+
+
+def map_to_odom(truth: np.ndarray, estimate: np.ndarray) -> np.ndarray:
+    """(K, 7) ``map`` -> ``odom`` that puts each odometry pose on the true one.
+
+    T_map_odom = T_map_base T_odom_base^-1: R = R_t R_e^T, p = p_t - R p_e.
+
+    Args:
+        truth: (K, 7) the true poses (m, world; x, y, z, w).
+        estimate: (K, 7) the poses in the odom frames.
+    """
+    q_e = estimate[:, 3:].copy()
+    q_e[:, :3] *= -1.0  # the inverse (conjugate) of a unit quaternion
+    q = np.array([quat_multiply(a, b) for a, b in zip(truth[:, 3:], q_e, strict=True)])
+    p = truth[:, :3] - np.einsum("kij,kj->ki", rotation_matrix(q), estimate[:, :3])
+    return np.concatenate([p, q], axis=1)
 
 
 class SensorPublisher:
@@ -316,13 +356,33 @@ class SensorPublisher:
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
                   send: bool) -> None:
         rot = rotation_matrix(after.orientation)
-        reading = measure_odometry(sensor.spec, sensor.key, sensor.state, after.position
-                                   - rot @ com, after.orientation,
-                                   after.velocity - np.cross(after.angular_velocity, com),
-                                   after.angular_velocity)
-        sensor.state += 1
+        truth = (after.position - rot @ com, after.orientation,
+                 after.velocity - np.cross(after.angular_velocity, com), after.angular_velocity)
+        if sensor.spec.drift:  # a dead reckoning, in its boat's odom frame
+            reading, sensor.state = dead_reckon(sensor.spec, sensor.key, sensor.state, *truth)
+            frame = names.odom_frame(sensor.boat.name)
+        else:
+            reading = measure_odometry(sensor.spec, sensor.key, sensor.state, *truth)
+            sensor.state += 1
+            frame = names.WORLD_FRAME
         if send:
-            self._send(sensor, 0, noisy_odometry(stamp, sensor.frame, reading))
+            self._send(sensor, 0, noisy_odometry(stamp, sensor.frame, reading, frame))
+
+    def odometry_poses(self, count: int) -> np.ndarray | None:
+        """(count, 7) each boat's first drifting odometry's pose (NaN rows: none), or None.
+
+        The pose of its last reading (m, world-parallel odom frame; x, y, z, w).
+        """
+        out = None
+        for index, sensor in self._sensors:
+            if (isinstance(sensor.spec, OdometrySpec) and sensor.spec.drift
+                    and sensor.state.position is not None):
+                if out is None:
+                    out = np.full((count, 7), np.nan)
+                if np.isnan(out[index, 0]):
+                    out[index] = np.concatenate([sensor.state.position,
+                                                 sensor.state.orientation])
+        return out
 
 
 def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None
@@ -352,4 +412,4 @@ def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: T
                  TappedPublisher(node, PointCloud2, names.points_topic(boat, spec.name),
                                  SENSOR_QOS, tap)], 0)
     return ([TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS,
-                             tap)], 0)
+                             tap)], DeadReckoning() if spec.drift else 0)

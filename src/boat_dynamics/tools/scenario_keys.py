@@ -69,6 +69,7 @@ EXERCISES: dict[str, dict] = {
             initial_pose={"position": [0.0, 0.0, 0.0]},
             commands=[{"t": 0.0, "thrust": 0.5, "rudder": 0.1}],
             sensors=[{"type": "imu"}, {"type": "gnss"}, {"type": "odometry"},
+                     {"type": "odometry", "name": "reckoning", "drift": True},
                      {"type": "magnetometer",
                       "noise": {"soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}},
                      {"type": "depth_sounder"},

@@ -16,6 +16,7 @@ from boat_dynamics.physics.scenario.read import (
 )
 from boat_dynamics.physics.scenario.sensors import datum_block, magnetic_field_block
 from boat_dynamics.physics.scenario.specs import (
+    TF_FRAMES,
     WRENCH_TOPICS,
     ScenarioError,
     SimulationSettings,
@@ -45,8 +46,8 @@ def simulation_block(raw: Any) -> SimulationSettings:
     d = mapping(raw, key)
     only(d, key, ("rate_hz", "publish_rate_hz", "diagnostics_rate_hz", "realtime", "duration",
                    "seed", "gravity", "water_density", "cmd_timeout", "substeps",
-                   "wave_precision", "datum", "magnetic_field", "publish_tf", "wrench_topics",
-                   "fleet_state"))
+                   "wave_precision", "datum", "magnetic_field", "publish_tf", "frames",
+                   "wrench_topics", "fleet_state"))
     rate = number(d, "rate_hz", key, 100.0, 1.0, 10000.0, unit="Hz")
     pub = number(d, "publish_rate_hz", key, 50.0, 0.0, rate, low_open=True, unit="Hz",
                  range_doc="(0, rate_hz] Hz")
@@ -75,6 +76,7 @@ def simulation_block(raw: Any) -> SimulationSettings:
         datum=datum_block(d.get("datum")),
         magnetic_field=magnetic_field_block(d.get("magnetic_field")),
         publish_tf=flag(d, "publish_tf", key, True),
+        frames=choice(d, "frames", key, "world", TF_FRAMES),
         wrench_topics=choice(d, "wrench_topics", key, "auto", WRENCH_TOPICS),
         fleet_state=flag(d, "fleet_state", key, False),
     )

@@ -13,6 +13,7 @@ from boat_dynamics.physics.scenario.read import (
     ROS_NAME_RULE,
     choice,
     describe,
+    flag,
     integer,
     is_ros_name,
     mapping,
@@ -126,7 +127,7 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
 #: s, the longest ``latency``.
 MAX_LATENCY = 60.0
 #: The keys of some types of sensor only: key -> those types.
-_TYPE_KEYS = {"outages": ("gnss",), "heading_baseline": ("gnss",),
+_TYPE_KEYS = {"outages": ("gnss",), "drift": ("odometry",), "heading_baseline": ("gnss",),
               "field_of_view_deg": ("depth_sounder",), "min_range": ("depth_sounder", "lidar"),
               "max_range": ("depth_sounder", "lidar"), "samples": ("lidar",),
               "horizontal_fov_deg": ("lidar",), "rings": ("lidar",),
@@ -175,7 +176,8 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
         if "position" in d:
             raise ScenarioError(f"{k}.position", d["position"],
                                 "not for an odometry (it is the hull reference point's)")
-        spec = OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise"))
+        spec = OdometrySpec(name, rate, _odometry_noise(noise, f"{k}.noise"),
+                            drift=flag(d, "drift", k, False))
     return replace(spec, dropout=dropout, latency=latency)
 
 

@@ -59,6 +59,10 @@ def shortened(value: object) -> str:
 #: by ``topic list``), ``on_subscription`` once someone subscribes (9 fewer DDS endpoints a
 #: boat: a faster start for fleets of hundreds), ``auto`` advertised up to
 #: :data:`ADVERTISED_WRENCH_BOATS` boats in the scenario.
+#: ``/tf``'s tree: ``world`` -> ``<boat>/base_link``, or REP-105's ``map`` -> ``<boat>/odom``
+#: -> ``<boat>/base_link`` (with ``world`` -> ``map``, the identity, on /tf_static).
+TfFrames = Literal["world", "rep105"]
+TF_FRAMES: tuple[TfFrames, ...] = get_args(TfFrames)
 WrenchTopics = Literal["auto", "advertised", "on_subscription"]
 WRENCH_TOPICS: tuple[str, ...] = get_args(WrenchTopics)
 #: ``wrench_topics: auto`` advertises every boat's wrench topics up to this many boats.
@@ -85,6 +89,9 @@ class SimulationSettings:
         datum: the world origin on WGS-84 (GNSS fixes).
         magnetic_field: the Earth's magnetic field there (magnetometers).
         publish_tf: publish ``/tf`` (world -> each boat's base_link) from the true pose.
+        frames: ``/tf``'s tree (:data:`TfFrames`): ``world`` -> each ``base_link``, or REP-105's
+            ``map`` -> each ``odom`` -> its ``base_link`` (``odom`` drifting with the boat's
+            drifting odometry).
         wrench_topics: when the ``wrench/<source>`` publishers exist (:data:`WrenchTopics`).
         fleet_state: also publish every boat's pose and twist in one message,
             ``/boatsim/fleet_state`` (boat_msgs/FleetState), with odom.
@@ -104,6 +111,7 @@ class SimulationSettings:
     datum: Datum = field(default_factory=Datum)
     magnetic_field: EarthField = field(default_factory=EarthField)
     publish_tf: bool = True
+    frames: TfFrames = "world"
     wrench_topics: WrenchTopics = "auto"
     fleet_state: bool = False
 

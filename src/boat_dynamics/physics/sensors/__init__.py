@@ -45,19 +45,54 @@ from boat_dynamics.physics.sensors.magnetometer import (
 )
 from boat_dynamics.physics.sensors.noise import dropped, stream_key
 from boat_dynamics.physics.sensors.odometry import (
+    DeadReckoning,
     OdometryNoise,
     OdometryReading,
     OdometrySpec,
+    dead_reckon,
     measure_odometry,
 )
 
-__all__ = ["Datum", "DelayLine", "DepthReading", "DepthSounderSpec", "EarthField", "GnssNoise",
-           "GnssReading", "GnssSpec", "GnssState", "ImuReading", "ImuSpec", "ImuState",
-           "InertialNoise", "LidarSpec", "MagnetometerReading", "MagnetometerSpec", "OdometryNoise",
-           "OdometryReading", "OdometrySpec", "SensorSpec", "dropped", "enu_to_geodetic",
-           "geodetic_to_enu", "gnss_start", "has_fix", "imu_start", "measure_depth",
-           "measure_gnss", "measure_heading", "measure_imu", "measure_lidar",
-           "measure_magnetometer", "measure_odometry", "slant_range", "stream_key", "true_motion"]
+__all__ = [
+    "Datum",
+    "DeadReckoning",
+    "DelayLine",
+    "DepthReading",
+    "DepthSounderSpec",
+    "EarthField",
+    "GnssNoise",
+    "GnssReading",
+    "GnssSpec",
+    "GnssState",
+    "ImuReading",
+    "ImuSpec",
+    "ImuState",
+    "InertialNoise",
+    "LidarSpec",
+    "MagnetometerReading",
+    "MagnetometerSpec",
+    "OdometryNoise",
+    "OdometryReading",
+    "OdometrySpec",
+    "SensorSpec",
+    "dead_reckon",
+    "dropped",
+    "enu_to_geodetic",
+    "geodetic_to_enu",
+    "gnss_start",
+    "has_fix",
+    "imu_start",
+    "measure_depth",
+    "measure_gnss",
+    "measure_heading",
+    "measure_imu",
+    "measure_lidar",
+    "measure_magnetometer",
+    "measure_odometry",
+    "slant_range",
+    "stream_key",
+    "true_motion",
+]
 
 #: A sensor of a boat's ``sensors`` list.
 SensorSpec = (ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec
