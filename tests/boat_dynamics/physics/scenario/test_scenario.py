@@ -164,7 +164,7 @@ def test_density_derives_mass():
         ({"boats": [{"sensors": [{"type": "magnetometer", "noise": {
             "horizontal_sigma": 1}}]}]},
          "boats[0].sensors[0].noise.horizontal_sigma", "sigma, hard_iron, soft_iron"),
-        ({"boats": [{"sensors": [{"type": "lidar"}]}]}, "boats[0].sensors[0].type",
+        ({"boats": [{"sensors": [{"type": "sonar"}]}]}, "boats[0].sensors[0].type",
          "one of: imu, gnss, odometry"),
         ({"boats": [{"sensors": [{"type": "odometry", "position": [0, 0, 1]}]}]},
          "boats[0].sensors[0].position", "reference point"),
