@@ -17,6 +17,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -388,7 +389,6 @@ class System:
         lift: the boats' trailing sections stacked ((B, 2) kg/m a22, (B, 2, 3) m positions;
             zero for a boat without hull lift), or None when no boat has any
             (:mod:`.hull_lift`).
-        footprints: the hulls as contact sees them (obstacles, other boats).
     """
 
     params: tuple[BoatParams, ...]
@@ -421,7 +421,15 @@ class System:
     windage_centre: np.ndarray | None = None
     towed: tuple[int, ...] = ()
     lift: HullLift | None = None
-    footprints: Footprints | None = None
+
+    @cached_property
+    def footprints(self) -> Footprints:
+        """The hulls as contact and the lidars see them (their convex prisms), once, when used.
+
+        Derived from the boats' own hulls (constant: a System is frozen); a lone boat in a
+        world without obstacles never asks, and pays nothing.
+        """
+        return Footprints.build([hull_mesh(p).vertices for p in self.params])
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -459,7 +467,6 @@ class System:
             **_windages(ps),
             towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
             lift=_lifts(ps),
-            footprints=Footprints.build([hull_mesh(p).vertices for p in ps]),
         )
 
 
