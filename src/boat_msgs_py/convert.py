@@ -6,6 +6,7 @@ import array
 import math
 
 import numpy as np
+from boat_msgs.msg import AisReport as AisReportMsg
 from boat_msgs.msg import Environment as EnvironmentMsg
 from boat_msgs.msg import WaveComponent as WaveComponentMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
@@ -37,6 +38,8 @@ from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 
 from boat_dynamics.physics.sensors import (
+    AisReport,
+    Datum,
     DepthReading,
     DepthSounderSpec,
     GnssReading,
@@ -44,14 +47,16 @@ from boat_dynamics.physics.sensors import (
     LidarSpec,
     MagnetometerReading,
     OdometryReading,
+    enu_to_geodetic,
 )
 from boat_msgs_py.cdr import stamp_parts
-from boat_msgs_py.names import WORLD_FRAME
+from boat_msgs_py.names import MMSI_BASE, WORLD_FRAME
 from ocean_sim.physics.environment import Environment, Wind
 from ocean_sim.physics.waves import MAX_COMPONENTS, InvalidSeaStateError, WaveComponent, WaveField
 
 __all__ = [
     "UNMEASURED_VARIANCE",
+    "ais_report",
     "depth_range",
     "diagnostic_array",
     "environment_from_msg",
@@ -230,6 +235,22 @@ def depth_range(stamp: Time, frame: str, spec: DepthSounderSpec, reading: DepthR
                  field_of_view=float(spec.field_of_view), min_range=float(spec.min_range),
                  max_range=float(spec.max_range), range=float(reading.range),
                  variance=float(reading.variance))
+
+
+def ais_report(stamp: Time, report: AisReport, name: str, datum: Datum) -> AisReportMsg:
+    """boat_msgs/AisReport of one report: WGS-84 degrees, AIS's angles (true, clockwise)."""
+    lat, lon, _ = enu_to_geodetic(datum, report.position)
+    return AisReportMsg(header=_header(stamp, WORLD_FRAME), mmsi=MMSI_BASE + report.boat,
+                        name=name, latitude_deg=math.degrees(lat),
+                        longitude_deg=math.degrees(lon),
+                        course_over_ground_deg=_compass_deg(report.course),
+                        speed_over_ground=float(report.speed),
+                        true_heading_deg=_compass_deg(report.heading))
+
+
+def _compass_deg(angle: float) -> float:
+    """Degrees in [0, 360), clockwise from north, of an ENU angle (rad, ccw from east)."""
+    return float((90.0 - math.degrees(angle)) % 360.0)
 
 
 def laser_scan(stamp: Time, frame: str, spec: LidarSpec, ranges: np.ndarray) -> LaserScan:

@@ -21,6 +21,7 @@ __all__ = [
     "LOCKSTEP",
     "LOCKSTEP_READY",
     "MAP_FRAME",
+    "MMSI_BASE",
     "ODOM",
     "PARAMETER_EVENTS",
     "POSE",
@@ -42,6 +43,7 @@ __all__ = [
     "WORLD_FRAME",
     "WORLD_MARKERS",
     "WRENCH_SOURCES",
+    "ais_topic",
     "boat_of",
     "boat_topic",
     "child_frame",
@@ -188,6 +190,15 @@ def sensor_data_topic(boat: str, sensor: str) -> str:
 def gnss_fix_topic(boat: str, sensor: str) -> str:
     """sensor_msgs/NavSatFix of a GNSS receiver named ``sensor``: ``<boat>/<sensor>/fix``."""
     return boat_topic(boat, f"{sensor}/fix")
+
+
+def ais_topic(boat: str, sensor: str) -> str:
+    """boat_msgs/AisReport of an AIS receiver: ``<boat>/<sensor>/reports``."""
+    return boat_topic(boat, f"{sensor}/reports")
+
+
+#: An AIS report's MMSI of the boat at fleet place k: this plus k (boatsim's own range).
+MMSI_BASE = 200_000_000
 
 
 def scan_topic(boat: str, sensor: str) -> str:

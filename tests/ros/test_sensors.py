@@ -374,3 +374,34 @@ def test_rep105_frames_chain_map_odom_base_link_and_odom_drifts_with_the_odometr
     assert {m.header.frame_id for _, m in readings} == {"alpha/odom"}
     (_, static), = msgs["/tf_static"]
     assert ("world", "map") in {(t.header.frame_id, t.child_frame_id) for t in static.transforms}
+
+
+def test_an_ais_receiver_hears_the_other_boat_every_ten_seconds_where_it_is(boatsim, tmp_path):
+    # bravo runs at about 1.5 m/s (under 14 knots: a report every 10 s); alpha's receiver,
+    # looking at 1 Hz, publishes its reports: at its first look, then 10 s and 20 s later,
+    # each its position (no noise here) at that step, its course and speed over ground.
+    data = {"simulation": {"seed": 3, "datum": DATUM},
+            "boats": [{"name": "alpha", "sensors": [
+                          {"type": "ais", "noise": {"position_sigma": 0.0}}]},
+                      {"name": "bravo", "initial_pose": {"position": [30.0, 0.0, 0.0],
+                                                         "yaw_deg": 90.0},
+                       "commands": [{"t": 0.0, "thrust": 0.5, "rudder": 0.0}]}]}
+    path = tmp_path / "ais.yaml"
+    path.write_text(yaml.safe_dump(data))
+    msgs = _run(boatsim, tmp_path, path, 25, "bag")
+    reports = msgs["/alpha/ais/reports"]
+    stamps = [s for s, _ in reports]
+    assert len(reports) == 3 and all(m.name == "bravo" for _, m in reports)
+    assert np.diff(stamps).tolist() == [10_000_000_000, 10_000_000_000]
+    assert {m.mmsi for _, m in reports} == {200_000_001}
+    odom = {s: m.pose.pose for s, m in msgs["/bravo/odom"]}
+    datum = Datum(math.radians(45.0), math.radians(-4.0), 0.0)
+    for stamp, m in reports:
+        truth = _vec(odom[stamp].position)
+        heard = geodetic_to_enu(datum, math.radians(m.latitude_deg),
+                                math.radians(m.longitude_deg), truth[2])
+        np.testing.assert_allclose(heard[:2], truth[:2], atol=1e-6)
+    last = reports[-1][1]
+    assert 0.5 < last.speed_over_ground < 3.0
+    assert min(abs(last.course_over_ground_deg), abs(last.course_over_ground_deg - 360)) < 20
+    assert min(abs(last.true_heading_deg), abs(last.true_heading_deg - 360)) < 20  # north

@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from boat_msgs.msg import AisReport as AisReportMsg
 from geometry_msgs.msg import TwistWithCovarianceStamped
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
@@ -26,6 +27,8 @@ from boat_dynamics.physics.core.system import FleetState
 from boat_dynamics.physics.scenario import BoatSpec, SimulationSettings
 from boat_dynamics.physics.scenario.specs import TfFrames
 from boat_dynamics.physics.sensors import (
+    AisSpec,
+    AisState,
     DeadReckoning,
     DelayLine,
     DepthSounderSpec,
@@ -35,6 +38,7 @@ from boat_dynamics.physics.sensors import (
     MagnetometerSpec,
     OdometrySpec,
     SensorSpec,
+    ais_reports,
     dead_reckon,
     dropped,
     gnss_start,
@@ -56,6 +60,7 @@ from boat_dynamics.physics.world.obstacles import World
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import (
+    ais_report,
     depth_range,
     gnss_heading,
     gnss_velocity,
@@ -185,6 +190,7 @@ class SensorPublisher:
                  tap: Tap | None, world: World | None = None,
                  footprints: Footprints | None = None) -> None:
         self._sim = sim
+        self._boats = [b.name for b in boats]  # AIS reports name them
         self._world = World() if world is None else world
         self._footprints = footprints  # the hulls a lidar sees
         self._sensors: list[tuple[int, _Sensor]] = []
@@ -277,6 +283,8 @@ class SensorPublisher:
                 self._depth(sensor, stamp, center_of_mass[index], now[index], depth, send)
             elif isinstance(sensor.spec, LidarSpec):
                 self._lidar(sensor, stamp, index, center_of_mass, after, sea, send)
+            elif isinstance(sensor.spec, AisSpec):
+                self._ais(sensor, stamp, index, center_of_mass, after, send)
             else:
                 self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
@@ -368,6 +376,21 @@ class SensorPublisher:
         if send:
             self._send(sensor, 0, noisy_odometry(stamp, sensor.frame, reading, frame))
 
+    def _ais(self, sensor: _Sensor, stamp, index: int, center_of_mass: np.ndarray,
+             after: FleetState, send: bool) -> None:
+        """An AIS receiver's reports due now: every other boat's, at its interval."""
+        rot = rotation_matrix(after.orientation)
+        ref = after.position - np.einsum("bij,bj->bi", rot, center_of_mass)
+        ground = np.einsum("bij,bj->bi", rot, after.velocity - np.cross(after.angular_velocity,
+                                                                        center_of_mass))
+        heading = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
+        reports, sensor.state = ais_reports(sensor.spec, sensor.key, sensor.state,
+                                            float(after.t), index, ref, ground, heading)
+        if send:
+            for r in reports:
+                self._send(sensor, 0, ais_report(stamp, r, self._boats[r.boat],
+                                                 self._sim.datum))
+
     def odometry_poses(self, count: int) -> np.ndarray | None:
         """(count, 7) each boat's first drifting odometry's pose (NaN rows: none), or None.
 
@@ -406,6 +429,9 @@ def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: T
     if isinstance(spec, DepthSounderSpec):
         return ([TappedPublisher(node, Range, names.sensor_data_topic(boat, spec.name),
                                  SENSOR_QOS, tap)], 0)
+    if isinstance(spec, AisSpec):
+        return ([TappedPublisher(node, AisReportMsg, names.ais_topic(boat, spec.name),
+                                 SENSOR_QOS, tap)], AisState())
     if isinstance(spec, LidarSpec):
         return ([TappedPublisher(node, LaserScan, names.scan_topic(boat, spec.name), SENSOR_QOS,
                                  tap) if spec.rings == 1 else

@@ -74,7 +74,8 @@ EXERCISES: dict[str, dict] = {
                       "noise": {"soft_iron": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}},
                      {"type": "depth_sounder"},
                      {"type": "gnss", "name": "dual", "heading_baseline": [1.0, 0.0, 0.0]},
-                     {"type": "lidar", "rings": 4, "sea": "clutter"}])],
+                     {"type": "lidar", "rings": 4, "sea": "clutter"},
+                     {"type": "ais", "range": 20000.0}])],
     },
     "a beaufort sea, a mesh hull with coefficients, sample points, named thrusters": {
         "ocean": {"spectrum": {"beaufort": 4, "spreading": None}},

@@ -23,6 +23,7 @@ from boat_dynamics.physics.scenario.read import (
 )
 from boat_dynamics.physics.scenario.specs import ScenarioError
 from boat_dynamics.physics.sensors import (
+    AisSpec,
     Datum,
     DepthSounderSpec,
     EarthField,
@@ -43,10 +44,10 @@ __all__ = ["MAX_LATENCY", "MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_
            "sensors_block"]
 
 #: The ``type`` of a sensor.
-SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder", "lidar")
+SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder", "lidar", "ais")
 #: Hz, each type's default ``rate_hz``.
 _RATES = {"imu": 100.0, "gnss": 5.0, "odometry": 50.0, "magnetometer": 20.0,
-          "depth_sounder": 10.0, "lidar": 10.0}
+          "depth_sounder": 10.0, "lidar": 10.0, "ais": 1.0}
 
 
 def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
@@ -132,7 +133,7 @@ _TYPE_KEYS = {"outages": ("gnss",), "drift": ("odometry",), "heading_baseline": 
               "max_range": ("depth_sounder", "lidar"), "samples": ("lidar",),
               "horizontal_fov_deg": ("lidar",), "rings": ("lidar",),
               "vertical_fov_deg": ("lidar",), "sea": ("lidar",),
-              "clutter_probability": ("lidar",)}
+              "clutter_probability": ("lidar",), "range": ("ais",)}
 
 
 def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
@@ -149,7 +150,7 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
              "bias_correlation_time, velocity_sigma, heading_sigma_deg; odometry: "
              "position_sigma, orientation_sigma_deg, velocity_sigma, "
              "angular_velocity_sigma_deg; magnetometer: sigma, hard_iron, soft_iron; "
-             "depth_sounder, lidar: range_sigma",
+             "depth_sounder, lidar: range_sigma; ais: position_sigma",
              default_doc="each key's default below")
     noise = mapping(d.get("noise"), f"{k}.noise")
     for only_key, only_types in _TYPE_KEYS.items():
@@ -168,6 +169,13 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
         spec = _depth_sounder(name, rate, position, d, noise, k)
     elif kind == "lidar":
         spec = _lidar(name, rate, position, d, noise, k)
+    elif kind == "ais":
+        only(noise, f"{k}.noise", ("position_sigma",))
+        spec = AisSpec(name, rate, position,
+                       number(d, "range", k, AisSpec().range, 0.0, 1e6, low_open=True,
+                              unit="m (an ais receiver's: the farthest boat it hears)"),
+                       number(noise, "position_sigma", f"{k}.noise", AisSpec().position_sigma,
+                              0.0, 1e4, unit="m", default_doc="odometry 0.5, ais 5"))
     elif kind == "gnss":
         spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
                         _outages(d.get("outages"), f"{k}.outages"),
@@ -331,7 +339,8 @@ def _odometry_noise(d: Mapping[str, Any], key: str) -> OdometryNoise:
                   "angular_velocity_sigma_deg"))
     default = OdometryNoise()
     return OdometryNoise(
-        number(d, "position_sigma", key, default.position_sigma, 0.0, 1e4, unit="m"),
+        number(d, "position_sigma", key, default.position_sigma, 0.0, 1e4, unit="m",
+               default_doc="odometry 0.5, ais 5"),
         math.radians(number(d, "orientation_sigma_deg", key,
                             math.degrees(default.orientation_sigma), 0.0, 90.0, unit="deg")),
         number(d, "velocity_sigma", key, default.velocity_sigma, 0.0, 100.0, unit="m/s"),

@@ -7,6 +7,7 @@ state, truth...) -> (reading, state)``; the noise is drawn from the scenario see
 index (:mod:`.noise`), so the same seed gives the same readings.
 """
 
+from boat_dynamics.physics.sensors.ais import AisReport, AisSpec, AisState, ais_reports
 from boat_dynamics.physics.sensors.delay import DelayLine
 from boat_dynamics.physics.sensors.depth_sounder import (
     DepthReading,
@@ -54,6 +55,9 @@ from boat_dynamics.physics.sensors.odometry import (
 )
 
 __all__ = [
+    "AisReport",
+    "AisSpec",
+    "AisState",
     "Datum",
     "DeadReckoning",
     "DelayLine",
@@ -75,7 +79,7 @@ __all__ = [
     "OdometryReading",
     "OdometrySpec",
     "SensorSpec",
-    "dead_reckon",
+    "ais_reports", "dead_reckon",
     "dropped",
     "enu_to_geodetic",
     "geodetic_to_enu",
@@ -96,4 +100,4 @@ __all__ = [
 
 #: A sensor of a boat's ``sensors`` list.
 SensorSpec = (ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec
-              | LidarSpec)
+              | LidarSpec | AisSpec)
