@@ -366,6 +366,25 @@ _NOT_SHARDS = frozenset({names.ROSOUT, names.PARAMETER_EVENTS, names.LOCKSTEP})
 
 
 
+def _command_topics(boats) -> frozenset[str]:
+    """The command topics the boats' dynamics nodes subscribe to (and so record).
+
+    ``cmd_thrust`` and ``cmd_rudder`` of each boat not scripted, its named thrusters' thrust,
+    and the steerable ones' angle (as :meth:`node.DynamicsNode` subscribes).
+    """
+    out = set()
+    for b in boats:
+        if b.commands is not None:
+            continue
+        out |= {names.boat_topic(b.name, names.CMD_THRUST),
+                names.boat_topic(b.name, names.CMD_RUDDER)}
+        for name, model in zip(b.thrusters, b.params.thrusters, strict=False):
+            out.add(names.thruster_topic(b.name, name, names.THRUSTER_THRUST))
+            if model.steerable:
+                out.add(names.thruster_topic(b.name, name, names.THRUSTER_ANGLE))
+    return frozenset(out)
+
+
 def _tapped_by_shards(node, topic: str) -> bool | None:
     """Whether a shard's dynamics node publishes or subscribes ``topic`` (it taps it).
 
@@ -501,13 +520,18 @@ class _Loop:
         """The recorder of what this process's publishers do not tap, in a participant of its own.
 
         The sim's own topics are tapped at their publishers; the recorder takes the rest
-        (with shards: what no shard taps; it looks once every shard has reported).
+        (with shards: what no shard taps; it looks once every shard has reported). The boats'
+        command topics are their shards' whatever the graph says yet: it can show a
+        replayer's publisher before the shard's subscription, and the recorder then took a
+        command the shard records too (twice in the bag: a lockstep test, once in a few runs).
         """
         self.recorder_node = rclpy.create_node(names.RECORDER_NODE,
                                                context=self.participants.new())
         self.nodes.append(self.recorder_node)
+        shards = self.options.process.shards
+        commands = _command_topics(self.scenario.boats) if shards else frozenset()
         self.recorder = TopicRecorder(self.recorder_node, self.bag, self.clock.stamp_ns,
-                                      skip=tap.topics | _BARRIER_TOPICS,
+                                      skip=tap.topics | _BARRIER_TOPICS | commands,
                                       qos=RECORD_QOS,
                                       skip_if=(_tapped_by_shards if self.options.process.shards
                                                else None),
