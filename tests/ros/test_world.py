@@ -55,11 +55,12 @@ def test_a_boat_driven_into_a_pier_reports_the_contact_and_the_world_is_drawn(bo
 
 
 def test_two_boats_that_meet_report_each_other(boatsim, tmp_path):
-    # Bow to bow, 4 m apart, both at full thrust: each reports the other by name.
+    # Bow to bow, 4 m apart, both at full thrust: each reports the other by name. Their
+    # event topics made on subscription (as a large fleet's): the bag has them all the same.
     path, bag = tmp_path / "two.yaml", tmp_path / "bag"
     thrust = [{"t": 0.0, "thrust": 1.0, "rudder": 0.0}]
     path.write_text(yaml.safe_dump({
-        "simulation": {"duration": 6.0},
+        "simulation": {"duration": 6.0, "wrench_topics": "on_subscription"},
         "boats": [{"name": "a", "commands": thrust},
                   {"name": "b", "commands": thrust,
                    "initial_pose": {"position": [8.0, 0.0, 0.0], "yaw_deg": 180.0}}]}))

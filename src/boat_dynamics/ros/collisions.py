@@ -24,7 +24,7 @@ from boat_dynamics.physics.world.obstacles import World
 from boat_msgs_py import names
 from boat_msgs_py.convert import seconds_to_time
 from boat_msgs_py.qos import COLLISION_QOS
-from boat_msgs_py.tap import Tap, TappedPublisher
+from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
 
 __all__ = ["CollisionEvents"]
 
@@ -37,14 +37,16 @@ class CollisionEvents:
         boats: the boats, in fleet order.
         world: the scenario's obstacles.
         tap: the recorder's tap, or None.
+        graph: made when a subscriber appears, as the wrenches of a large fleet
+            (``simulation.wrench_topics``); None: at start-up.
     """
 
     def __init__(self, node: Node, boats: list[BoatSpec], world: World,
-                 tap: Tap | None) -> None:
+                 tap: Tap | None, graph: GraphWatch | None = None) -> None:
         self._world = world
         self._names = [b.name for b in boats]
         self._pubs = ([TappedPublisher(node, Collision, names.boat_topic(b.name, names.COLLISION),
-                                       COLLISION_QOS, tap) for b in boats]
+                                       COLLISION_QOS, tap, graph) for b in boats]
                       if world.obstacles or len(boats) > 1 else [])
         #: the names an event's ``other`` index means: the obstacles', then the boats'
         self._others = [o.name for o in world.obstacles] + self._names

@@ -316,7 +316,8 @@ class DynamicsNode(Node):
                                       collisions=bool(scenario.world.obstacles)
                                       or len(scenario.boats) > 1, world=scenario.world,
                                       footprints=self._system.footprints)
-        self.collisions = CollisionEvents(self, list(scenario.boats), scenario.world, self._tap)
+        self.collisions = CollisionEvents(self, list(scenario.boats), scenario.world, self._tap,
+                                          self._graph)
         self.boats = []
         for i, spec in enumerate(scenario.boats):
             if stopped is not None and stopped():
