@@ -190,7 +190,7 @@ def _kinematics(system: System, state: FleetState, contact: Contact) -> BoatKine
 
 def _near_obstacles(world: World, system: System, k: BoatKinematics) -> np.ndarray:
     """(N,) int, the boats whose footprint's circle reaches the obstacles' bounding box."""
-    x0, x1, y0, y1, _ = world.bounds()
+    x0, x1, y0, y1, _ = world.bounds
     r, p = system.footprints.radius, k.reference
     return np.flatnonzero((p[:, 0] + r >= x0) & (p[:, 0] - r <= x1) & (p[:, 1] + r >= y0)
                           & (p[:, 1] - r <= y1))

@@ -179,7 +179,7 @@ def _near(world: World, points: np.ndarray) -> np.ndarray:
     """(E,) bool: the points within the obstacles' bounding box (the only ones that can touch)."""
     if not world.obstacles:
         return np.zeros(points.shape[0], dtype=bool)
-    x0, x1, y0, y1, top = world.bounds()
+    x0, x1, y0, y1, top = world.bounds
     return ((points[:, 0] >= x0) & (points[:, 0] <= x1) & (points[:, 1] >= y0)
             & (points[:, 1] <= y1) & (points[:, 2] <= top))
 

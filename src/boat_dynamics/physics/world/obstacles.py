@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -48,8 +49,9 @@ class Prism:
             p = p[::-1].copy()
         return cls(name, p, float(top))
 
+    @cached_property
     def edges(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(P, 2) edge starts, (P, 2) edge vectors, (P, 2) unit outward normals."""
+        """(P, 2) edge starts, (P, 2) edge vectors, (P, 2) unit outward normals (once)."""
         a = self.points
         e = np.roll(a, -1, axis=0) - a
         n = np.stack([e[:, 1], -e[:, 0]], axis=1) / np.hypot(e[:, 0], e[:, 1])[:, None]
@@ -139,8 +141,9 @@ class World:
     obstacles: tuple[Obstacle, ...] = ()
     contact: ContactParams | None = None
 
+    @cached_property
     def bounds(self) -> np.ndarray:
-        """(5,) m: x min, x max, y min, y max, the highest top (NaNs with no obstacles)."""
+        """(5,) m: x min, x max, y min, y max, the highest top (NaNs with no obstacles; once)."""
         if not self.obstacles:
             return np.full(5, np.nan)
         lo, hi, top = [], [], []
@@ -193,7 +196,7 @@ def penetration(world: World, xy: np.ndarray, z: np.ndarray, velocity: np.ndarra
 
 def _in_prism(prism: Prism, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(N,) depth inside ``prism`` (0 outside) and (N, 2) the outward normal of the way out."""
-    a, e, n = prism.edges()
+    a, e, n = prism.edges
     rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
     inside = inside_polygon(prism.points, xy)
     t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)

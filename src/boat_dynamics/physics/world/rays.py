@@ -50,7 +50,7 @@ def obstacle_ranges(world: World, origins: np.ndarray, directions: np.ndarray) -
 
 def _prism(prism: Prism, o: np.ndarray, d: np.ndarray) -> np.ndarray:
     """(R,) m to the prism's walls (below its top) or its top face."""
-    a, e, _ = prism.edges()
+    a, e, _ = prism.edges
     # o + t d = a + s e in x, y: solve [d_xy, -e] [t, s]^T = a - o_xy per ray and edge
     det = d[:, None, 0] * -e[None, :, 1] + d[:, None, 1] * e[None, :, 0]
     rel = a[None] - o[:, None, :2]  # (R, P, 2)
