@@ -265,6 +265,7 @@ class SensorPublisher:
             for pub, msg in sensor.delay.pop_due(self._t):
                 pub.publish(msg)
         now: dict[int, BoatState] = {}  # each boat's state copied once, for all its sensors
+        fleet: tuple[np.ndarray, np.ndarray] | None = None  # lidars' and AIS's, once
         for index, sensor in self._sensors:
             if not due(sensor.spec.rate_hz):
                 continue
@@ -281,10 +282,12 @@ class SensorPublisher:
                 self._magnetometer(sensor, stamp, now[index], send)
             elif isinstance(sensor.spec, DepthSounderSpec):
                 self._depth(sensor, stamp, center_of_mass[index], now[index], depth, send)
-            elif isinstance(sensor.spec, LidarSpec):
-                self._lidar(sensor, stamp, index, center_of_mass, after, sea, send)
-            elif isinstance(sensor.spec, AisSpec):
-                self._ais(sensor, stamp, index, center_of_mass, after, send)
+            elif isinstance(sensor.spec, LidarSpec | AisSpec):
+                fleet = fleet or _fleet_frames(center_of_mass, after)
+                if isinstance(sensor.spec, LidarSpec):
+                    self._lidar(sensor, stamp, index, fleet, after, sea, send)
+                else:
+                    self._ais(sensor, stamp, index, fleet, center_of_mass, after, send)
             else:
                 self._odometry(sensor, stamp, center_of_mass[index], now[index], send)
 
@@ -340,11 +343,14 @@ class SensorPublisher:
         if send:
             self._send(sensor, 0, depth_range(stamp, sensor.frame, sensor.spec, reading))
 
-    def _lidar(self, sensor: _Sensor, stamp, index: int, center_of_mass: np.ndarray,
-               after: FleetState, sea: WaveField | None, send: bool) -> None:
-        """A lidar's scan: the world, every other hull, the sea at ``after``'s time."""
-        rot = rotation_matrix(after.orientation)
-        ref = after.position - np.einsum("bij,bj->bi", rot, center_of_mass)
+    def _lidar(self, sensor: _Sensor, stamp, index: int,
+               fleet: tuple[np.ndarray, np.ndarray], after: FleetState,
+               sea: WaveField | None, send: bool) -> None:
+        """A lidar's scan: the world, every other hull, the sea at ``after``'s time.
+
+        ``fleet``: every boat's rotation and reference point (:func:`_fleet_frames`).
+        """
+        rot, ref = fleet
         hulls = None if self._footprints is None else (self._footprints, rot, ref)
         t = float(after.t)
 
@@ -376,11 +382,13 @@ class SensorPublisher:
         if send:
             self._send(sensor, 0, noisy_odometry(stamp, sensor.frame, reading, frame))
 
-    def _ais(self, sensor: _Sensor, stamp, index: int, center_of_mass: np.ndarray,
-             after: FleetState, send: bool) -> None:
-        """An AIS receiver's reports due now: every other boat's, at its interval."""
-        rot = rotation_matrix(after.orientation)
-        ref = after.position - np.einsum("bij,bj->bi", rot, center_of_mass)
+    def _ais(self, sensor: _Sensor, stamp, index: int, fleet: tuple[np.ndarray, np.ndarray],
+             center_of_mass: np.ndarray, after: FleetState, send: bool) -> None:
+        """An AIS receiver's reports due now: every other boat's, at its interval.
+
+        ``fleet``: every boat's rotation and reference point (:func:`_fleet_frames`).
+        """
+        rot, ref = fleet
         ground = np.einsum("bij,bj->bi", rot, after.velocity - np.cross(after.angular_velocity,
                                                                         center_of_mass))
         heading = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
@@ -406,6 +414,13 @@ class SensorPublisher:
                     out[index] = np.concatenate([sensor.state.position,
                                                  sensor.state.orientation])
         return out
+
+
+def _fleet_frames(center_of_mass: np.ndarray, after: FleetState
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """(B, 3, 3) every boat's body-to-world rotation, (B, 3) m its hull reference point."""
+    rot = rotation_matrix(after.orientation)
+    return rot, after.position - np.einsum("bij,bj->bi", rot, center_of_mass)
 
 
 def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None
