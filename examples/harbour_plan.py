@@ -2,7 +2,8 @@
 
 The USV goes north up the channel at full thrust and turns to port after 20 s; the ferry
 runs its script across the channel. The picture: the obstacles, both tracks, where contact
-pushed a boat (dots), and the USV's 2-D scanner's last scan (its returns as points).
+pushed a boat (dots), the two channel buoys where they drifted on their lines, and the USV's
+2-D scanner's last scan (its returns as points).
 
     .venv/bin/python examples/harbour_plan.py docs/images/harbour.png
 """
@@ -38,7 +39,8 @@ def drive(seconds: float = 60.0):
     dt, track, pushed = 1.0 / scenario.simulation.rate_hz, [], []
     for _ in range(int(seconds / dt)):
         rudder = 0.3 if 20.0 <= state.t < 26.0 else 0.0
-        inputs = FleetInputs.stack([BoatInputs(1.0, rudder), BoatInputs(0.8, 0.0)])
+        inputs = FleetInputs.stack([BoatInputs(1.0, rudder), BoatInputs(0.8, 0.0)]
+                                   + [BoatInputs(0.0, 0.0)] * (len(scenario.boats) - 2))
         done = pipeline.step(system, state, inputs, scenario.sea, dt,
                              environment=scenario.environment, world=scenario.world)
         state = done.state
@@ -71,6 +73,12 @@ def main(out: str) -> None:
         else:
             ax.add_patch(plt.Circle(o.center, o.radius, color="0.3"))
     for i, boat in enumerate(scenario.boats):
+        if boat.kind == "buoy":  # its watch circle's worth of drift, and where it ends
+            colour = "red" if "red" in boat.name else "green"
+            ax.plot(track[:, i, 0], track[:, i, 1], color=colour, linewidth=0.8)
+            ax.add_patch(plt.Circle(track[-1, i, :2], boat.params.hull.length / 2,
+                                    color=colour))
+            continue
         ax.plot(track[:, i, 0], track[:, i, 1], label=boat.name)
         hit = pushed[:, i] > 0.0
         ax.plot(track[hit, i, 0], track[hit, i, 1], ".", color="red", markersize=3)

@@ -22,6 +22,7 @@ __all__ = [
     "LOCKSTEP_READY",
     "MAP_FRAME",
     "MMSI_BASE",
+    "MOORING_WRENCH",
     "ODOM",
     "PARAMETER_EVENTS",
     "POSE",
@@ -78,6 +79,9 @@ WRENCH_SOURCES = ("buoyancy", "damping", "drag", "thrust", "rudder", "diffractio
                   "wind", "total")
 #: wrench/carriage: a towed boat's carriage force (the resistance), only for a boat on one.
 CARRIAGE_WRENCH = "carriage"
+#: wrench/mooring: a moored boat's or a buoy's line (``anchor_line``, ``mooring``), only for
+#: one that has one.
+MOORING_WRENCH = "mooring"
 #: wrench/collision: the obstacles' push on a boat, only in a world with obstacles.
 COLLISION_WRENCH = "collision"
 

@@ -136,7 +136,11 @@ def advertises_wrenches(setting: WrenchTopics, boats: int, recorder_process: boo
 def _boat_lines(spec: BoatSpec) -> list[tuple[str, str]]:
     """(log level, line) of what a boat starts with, for :meth:`DynamicsNode._log_boats`."""
     lines = [("info", _hydrodynamics(spec.params))]
-    if spec.commands is not None:
+    if spec.kind == "buoy":
+        line = spec.params.anchor_line
+        lines.append(("info", f"a buoy moored by a {line.length:.1f} m line to an anchor at "
+                              f"{np.round(line.anchor, 2).tolist()} m; no command topics"))
+    elif spec.commands is not None:
         lines.append(("info", "scripted commands; ignoring command topics"))
     memory = spec.params.radiation_memory
     if memory is not None and memory.error > POOR_FIT:

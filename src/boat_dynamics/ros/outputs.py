@@ -91,7 +91,8 @@ class FleetPublisher:
         self._topics = {key: _FleetTopic([(i, p[key]) for i, p in enumerate(self.pubs)
                                           if key in p])
                         for key in ("pose", "twist", *names.WRENCH_SOURCES,
-                                    names.CARRIAGE_WRENCH, names.COLLISION_WRENCH)}
+                                    names.CARRIAGE_WRENCH, names.COLLISION_WRENCH,
+                                    names.MOORING_WRENCH)}
         self._state_pub, self._state = None, None  # every boat in one message
         if sim.fleet_state:
             self._state_pub = TappedPublisher(node, FleetStateMsg, names.FLEET_STATE,
@@ -157,6 +158,8 @@ class FleetPublisher:
             self._boat_wrenches(names.CARRIAGE_WRENCH, sec, nanosec, now, carriage)
         self._boat_wrenches(names.COLLISION_WRENCH, sec, nanosec, now, lambda i: np.concatenate(
             [forces.collision.force[i], forces.collision.torque[i]]))
+        self._boat_wrenches(names.MOORING_WRENCH, sec, nanosec, now, lambda i: np.concatenate(
+            [forces.mooring.force[i], forces.mooring.torque[i]]))
 
     def _boat_wrenches(self, key: str, sec: int, nanosec: int, now: float,
                        value: Callable[[int], np.ndarray]) -> None:
@@ -237,11 +240,19 @@ class _FleetTopic:
         return self._wanted
 
 
+def _moored(params) -> bool:
+    """Whether a boat is held by a line (``anchor_line``) or a soft mooring (``mooring``)."""
+    soft = params.mooring is not None or (params.derive is not None
+                                          and params.derive.mooring_period is not None)
+    return soft or params.anchor_line is not None
+
+
 def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None, graph: GraphWatch | None,
                      collisions: bool) -> dict[str, TappedPublisher]:
     """One boat's publishers: odom, pose, twist, wrench/<source> (+ carriage, collision).
 
-    wrench/carriage if the boat is towed; wrench/collision in a world with obstacles.
+    wrench/carriage if the boat is towed; wrench/collision in a world with obstacles;
+    wrench/mooring if it is moored (an anchor line, or a soft mooring).
     """
     pubs = {key: TappedPublisher(node, cls, names.boat_topic(spec.name, topic), STATE_QOS, tap)
             for key, cls, topic in (("odom", Odometry, names.ODOM),
@@ -249,7 +260,8 @@ def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None, graph: GraphWa
                                     ("twist", TwistStamped, names.TWIST))}
     sources = [*names.WRENCH_SOURCES,
                *([names.CARRIAGE_WRENCH] if spec.params.carriage is not None else []),
-               *([names.COLLISION_WRENCH] if collisions else [])]
+               *([names.COLLISION_WRENCH] if collisions else []),
+               *([names.MOORING_WRENCH] if _moored(spec.params) else [])]
     for source in sources:
         pubs[source] = TappedPublisher(node, WrenchStamped, names.wrench_topic(spec.name, source),
                                        DIAGNOSTICS_QOS, tap, graph)

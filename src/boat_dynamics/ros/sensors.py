@@ -56,7 +56,7 @@ from boat_dynamics.physics.sensors import (
 )
 from boat_dynamics.physics.sensors.lidar import lidar_directions
 from boat_dynamics.physics.world.footprints import Footprints
-from boat_dynamics.physics.world.obstacles import World
+from boat_dynamics.physics.world.obstacles import World, floor_depth
 from boat_msgs_py import names
 from boat_msgs_py.cdr import FleetTemplate, tf_template
 from boat_msgs_py.convert import (
@@ -191,6 +191,7 @@ class SensorPublisher:
                  footprints: Footprints | None = None) -> None:
         self._sim = sim
         self._boats = [b.name for b in boats]  # AIS reports name them
+        self._transponders = np.array([b.kind == "boat" for b in boats])  # buoys have none
         self._world = World() if world is None else world
         self._footprints = footprints  # the hulls a lidar sees
         self._sensors: list[tuple[int, _Sensor]] = []
@@ -337,8 +338,12 @@ class SensorPublisher:
                send: bool) -> None:
         transducer = after.position + rotation_matrix(after.orientation) @ (
             sensor.spec.position - com)
+        floor = None
+        if any(math.isfinite(getattr(o, "slope", math.inf)) for o in self._world.obstacles):
+            def floor(xy: np.ndarray) -> float:  # shelving up to a shore
+                return float(floor_depth(self._world, xy[None, :], depth)[0])
         reading = measure_depth(sensor.spec, sensor.key, sensor.state, transducer,
-                                after.orientation, depth)
+                                after.orientation, depth, floor)
         sensor.state += 1
         if send:
             self._send(sensor, 0, depth_range(stamp, sensor.frame, sensor.spec, reading))
@@ -393,7 +398,8 @@ class SensorPublisher:
                                                                         center_of_mass))
         heading = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
         reports, sensor.state = ais_reports(sensor.spec, sensor.key, sensor.state,
-                                            float(after.t), index, ref, ground, heading)
+                                            float(after.t), index, ref, ground, heading,
+                                            self._transponders)
         if send:
             for r in reports:
                 self._send(sensor, 0, ais_report(stamp, r, self._boats[r.boat],

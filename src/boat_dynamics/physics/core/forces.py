@@ -15,6 +15,7 @@ import numpy as np
 from boat_dynamics.physics.body.wrench import Wrench
 from boat_dynamics.physics.core.contact import Contact, GroupContact
 from boat_dynamics.physics.core.system import FleetForces, FleetInputs, FleetState, System
+from boat_dynamics.physics.force_models.anchor_line import anchor_line_wrench
 from boat_dynamics.physics.force_models.buoyancy import sample_point_group
 from boat_dynamics.physics.force_models.collision import (
     BoatKinematics,
@@ -115,6 +116,11 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         tether = mooring_wrench(m.stiffness, m.damping, m.anchor, state.position, rot,
                                 state.velocity, state.angular_velocity)
         total = total + tether
+    if system.anchor_lines is not None:  # buoys, anchored boats
+        line = anchor_line_wrench(system.anchor_lines, state.position, rot, state.velocity,
+                                  state.angular_velocity, com)
+        tether = tether + line
+        total = total + line
     blow = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
     if (environment is not None and environment.wind.speed > 0.0
             and system.windage is not None):  # in calm air no load (no air drag either)

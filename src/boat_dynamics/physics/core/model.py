@@ -15,6 +15,7 @@ import numpy as np
 from boat_dynamics.physics.body.hull import BoxHull, HullMesh, box_mesh
 from boat_dynamics.physics.body.rigid_body import mass_matrix, quat_from_euler, rotation_matrix
 from boat_dynamics.physics.body.wrench import Wrench
+from boat_dynamics.physics.force_models.anchor_line import AnchorLine
 from boat_dynamics.physics.force_models.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.force_models.carriage import Carriage
 from boat_dynamics.physics.force_models.control import ControlSettings
@@ -152,6 +153,8 @@ class BoatParams:
             of :mod:`.seakeeping`, the ``mooring`` key), or None.
         carriage: a towing carriage prescribing its speed along a line, heave, roll and
             pitch free (:mod:`.carriage`, the ``carriage`` key), or None.
+        anchor_line: an elastic line to an anchor on the sea floor (:mod:`.anchor_line`: a
+            buoy's mooring, an anchored boat; the ``anchor_line`` key), or None.
         water_velocity: where the water velocity of the damping is taken
             (:data:`WaterVelocity`).
         windage: what the wind acts on (:mod:`.wind`), or None: no wind load.
@@ -185,6 +188,7 @@ class BoatParams:
     radiation_memory: RadiationMemory | None = None
     mooring: Mooring | None = None
     carriage: Carriage | None = None
+    anchor_line: AnchorLine | None = None
     water_velocity: WaterVelocity = "reference_point"
     windage: Windage | None = None
     hull_lift: HullLift | None = None

@@ -31,6 +31,7 @@ from boat_dynamics.physics.core.model import (
     WaterVelocity,
     hull_mesh,
 )
+from boat_dynamics.physics.force_models.anchor_line import AnchorLine
 from boat_dynamics.physics.force_models.buoyancy import SamplePointBuoyancy
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.force_models.mooring import Mooring
@@ -382,6 +383,9 @@ class System:
             one.
         mooring: the boats' moorings stacked ((B, 3) anchor, stiffness, damping; zero for a
             boat not moored), or None when no boat is moored.
+        anchor_lines: the boats' anchor lines stacked ((B, 3) anchor and fairlead, (B,)
+            length, stiffness, damping; slack and stiffness zero for a boat without one), or
+            None when no boat has one.
         windage: (B, 6) A_F, A_L, L_oa, c_x, c_y, c_n (:mod:`.wind`; zero for a boat without
             windage), or None when no boat has any.
         windage_centre: (B, 3) m, body frames, where the wind's force acts, or None.
@@ -417,6 +421,7 @@ class System:
     inertia_tensor: np.ndarray | None = None
     memory: RadiationMemory | None = None
     mooring: Mooring | None = None
+    anchor_lines: AnchorLine | None = None
     windage: np.ndarray | None = None
     windage_centre: np.ndarray | None = None
     towed: tuple[int, ...] = ()
@@ -464,6 +469,7 @@ class System:
             excitation=_excitation_batches(ps),
             **_coupling(ps),
             mooring=_moorings(ps),
+            anchor_lines=_anchor_lines(ps),
             **_windages(ps),
             towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
             lift=_lifts(ps),
@@ -532,6 +538,16 @@ def _moorings(ps: Sequence[BoatParams]) -> Mooring | None:
     moorings = [free if p.mooring is None else p.mooring for p in ps]
     return Mooring(*(np.array([getattr(m, f) for m in moorings], dtype=float)
                      for f in ("anchor", "stiffness", "damping")))
+
+
+def _anchor_lines(ps: Sequence[BoatParams]) -> AnchorLine | None:
+    """The boats' anchor lines stacked, or None when no boat has one."""
+    if all(p.anchor_line is None for p in ps):
+        return None
+    free = AnchorLine(np.zeros(3), np.zeros(3), 1.0, 0.0, 0.0)
+    lines = [free if p.anchor_line is None else p.anchor_line for p in ps]
+    return AnchorLine(*(np.array([getattr(m, f) for m in lines], dtype=float)
+                        for f in ("anchor", "fairlead", "length", "stiffness", "damping")))
 
 
 def _coupling(ps: Sequence[BoatParams]) -> dict:

@@ -14,13 +14,14 @@ a file is read into), :mod:`.read` (typed value readers), :mod:`.sea` (``simulat
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import yaml
 
 from boat_dynamics.physics.scenario.boat import DEFAULT_CRITICAL_RATIO, boat_block
-from boat_dynamics.physics.scenario.read import describe, mapping, only, yaml_depth
+from boat_dynamics.physics.scenario.read import describe, mapping, only, unlisted, yaml_depth
 from boat_dynamics.physics.scenario.sea import environment_block, ocean_block, simulation_block
 from boat_dynamics.physics.scenario.specs import (
     BoatSpec,
@@ -28,7 +29,7 @@ from boat_dynamics.physics.scenario.specs import (
     ScenarioError,
     SimulationSettings,
 )
-from boat_dynamics.physics.scenario.world import world_block
+from boat_dynamics.physics.scenario.world import buoy_boats, world_block
 
 __all__ = [
     "DEFAULT_CRITICAL_RATIO",
@@ -155,10 +156,17 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     alike: dict = {}  # a boat's parameter blocks (repr) -> the first such boat's parameters
     boats = tuple(boat_block(b, f"boats[{i}]", sim, lone, base, sea.depth, loaded, alike)
                   for i, b in enumerate(boats_raw))
+    buoys = buoy_boats(mapping(d.get("world"), "world").get("buoys"), sea.depth,
+                       sim.water_density)
+    with unlisted():  # the buoys' own keys are listed; the boat blocks are written here
+        boats += tuple(replace(boat_block(b, k, sim, False, base, sea.depth), kind="buoy")
+                       for k, b in buoys)
+    keys = [f"boats[{i}]" for i in range(len(boats_raw))] + [k for k, _ in buoys]
     names = [b.name for b in boats]
     for i, n in enumerate(names):
         if names.index(n) != i:
-            raise ScenarioError(f"boats[{i}].name", n, "must be unique among the boats")
+            raise ScenarioError(f"{keys[i]}.name", n, "must be unique among the boats and "
+                                "buoys")
     notes = ()
     if defaulted:
         hull, mass = boats[0].params.hull, boats[0].params.mass

@@ -10,7 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from boat_dynamics.physics.body.hull import BoxHull, HullMesh, HullMeshError, box_mesh, load_mesh
+from boat_dynamics.physics.body.hull import (
+    BoxHull,
+    HullMesh,
+    HullMeshError,
+    box_mesh,
+    cylinder_mesh,
+    load_mesh,
+)
 from boat_dynamics.physics.body.rigid_body import inertia_tensor
 from boat_dynamics.physics.core.commands import CommandScript
 from boat_dynamics.physics.core.model import (
@@ -24,6 +31,7 @@ from boat_dynamics.physics.core.model import (
     coefficients_key,
     initial_state,
 )
+from boat_dynamics.physics.force_models.anchor_line import AnchorLine
 from boat_dynamics.physics.force_models.carriage import Carriage
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
 from boat_dynamics.physics.force_models.wind import DEFAULT_WIND_COEFFICIENTS, Windage
@@ -71,11 +79,17 @@ DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
 RADIATING_CRITICAL_RATIO = (0.0, 0.1, 0.0)
 
 
+#: The hull types, and the keys each reads.
+HULL_TYPES = ("box", "cylinder", "mesh")
+_HULL_TYPE_KEYS = {"box": ("length", "beam", "height", "subdivisions"),
+                   "cylinder": ("radius", "height", "subdivisions"), "mesh": ("path", "scale")}
+
+
 _BOAT_KEYS = ("name", "hull", "mass", "density", "center_of_mass", "inertia", "buoyancy",
               "damping", "added_mass", "propulsion", "rudder", "control_mode", "initial_pose",
               "commands", "min_wavelength", "keel", "stokes_drift", "control",
               "inertia_scale", "inertia_products", "hydrodynamics", "sensors", "windage",
-              "mooring", "carriage")
+              "mooring", "carriage", "anchor_line")
 
 
 #: A boat's keys that leave its parameters (BoatParams) alone.
@@ -148,6 +162,8 @@ def _boat_params(d: Mapping[str, Any], key: str, sim: SimulationSettings, base_d
         water_velocity=_water_velocity(dd, dk, buoyancy),
         carriage=_carriage(d.get("carriage"), f"{key}.carriage"),
     )
+    params = replace(params, anchor_line=_anchor_line(
+        d.get("anchor_line"), f"{key}.anchor_line", params, mesh, sim.rate_hz, depth))
     params = _with_hydrodynamics(params, d, key, dd, ratio, base_dir, depth,
                                  {} if loaded is None else loaded)
     params = replace(params, derive=replace(params.derive, windage=_windage(
@@ -190,6 +206,54 @@ def _carriage(raw: Any, key: str) -> Carriage | None:
     speed = number(cd, "speed", key, 0.0, -MAX_SPEED, MAX_SPEED, unit="m/s",
                    default_doc="0 with a carriage block; without one the boat is free")
     return None if raw is None else Carriage(speed, np.full(2, np.nan), math.nan)
+
+
+#: An anchor line's stiffest spring: its natural frequency on the boat's mass at most
+#: simulation.rate_hz / 10 (as the contact's, :data:`.world.MAX_FREQUENCY_SHARE`).
+LINE_FREQUENCY_SHARE = 0.1
+#: An anchor line's default damping: this share of critical on the boat's mass.
+LINE_DAMPING_RATIO = 0.1
+
+
+def _anchor_line(raw: Any, key: str, params: BoatParams, mesh: HullMesh, rate_hz: float,
+                 depth: float) -> AnchorLine | None:
+    """``anchor_line``: an elastic line to an anchor on the sea floor; None without the block.
+
+    (:mod:`boat_dynamics.physics.force_models.anchor_line`.) Its spring may be no stiffer than
+    a natural frequency of rate_hz / 10 on the boat's mass (the step resolves it).
+    """
+    ad = mapping(raw, key)
+    only(ad, key, ("anchor", "fairlead", "length", "stiffness", "damping"))
+    if raw is not None and "anchor" not in ad:
+        raise ScenarioError(f"{key}.anchor", None, "is required: [x, y, z] m, world frame")
+    anchor = vector(ad, "anchor", key, 3, [0.0, 0.0, -10.0], bound=MAX_POSITION,
+                    unit="m, world frame, z in [-ocean.depth, 0)",
+                    default_doc="required with an anchor_line block")
+    if raw is not None and not -depth <= anchor[2] < 0.0:
+        raise ScenarioError(f"{key}.anchor", ad.get("anchor"), f"z must be under the surface "
+                            f"and not below the sea floor: in [{-depth:g}, 0) m")
+    bottom = float(mesh.vertices[:, 2].min())
+    fairlead = vector(ad, "fairlead", key, 3, [0.0, 0.0, bottom], unit="m, body frame",
+                      default_doc="the middle of the hull's bottom")
+    if np.any(np.abs(fairlead) > COM_REACH * float(np.max(mesh.extents))):
+        raise ScenarioError(f"{key}.fairlead", ad.get("fairlead"),
+                            f"must lie within {COM_REACH:g} hull sizes of its reference point")
+    length = number(ad, "length", key, 10.0, 0.0, 1e4, low_open=True, unit="m, unstretched",
+                    default_doc="required with an anchor_line block")
+    if raw is not None and "length" not in ad:
+        raise ScenarioError(f"{key}.length", None, "is required: m, the unstretched line")
+    stiffest = params.mass * (2 * math.pi * LINE_FREQUENCY_SHARE * rate_hz) ** 2
+    stiffness = number(ad, "stiffness", key, min(2e4, stiffest), 0.0, 1e12, low_open=True,
+                       unit="N/m (EA / length)", default_doc="min(2e4, the stiffest)",
+                       range_doc="(0, mass x (2 pi simulation.rate_hz / 10)^2] N/m")
+    if stiffness > stiffest:
+        raise ScenarioError(f"{key}.stiffness", stiffness, f"must be at most {stiffest:.6g} N/m"
+                            f" = mass x (2 pi simulation.rate_hz / 10)^2: a stiffer line "
+                            "rings faster than the step resolves (raise rate_hz, or soften it)")
+    damping = number(ad, "damping", key, 2 * LINE_DAMPING_RATIO * math.sqrt(stiffness
+                     * params.mass), 0.0, 1e9, unit="N s/m",
+                     default_doc=f"{LINE_DAMPING_RATIO:g} of critical on the boat's mass")
+    return None if raw is None else AnchorLine(anchor, fairlead, length, stiffness, damping)
 
 
 def _mooring_period(raw: Any, key: str, towed: bool) -> float | None:
@@ -293,24 +357,41 @@ MIN_HULL_SIZE = 0.01
 
 
 def _hull(hd: Mapping[str, Any], hk: str, base_dir: Path) -> tuple[BoxHull, HullMesh]:
-    """``hull``: a box (``length``, ``beam``, ``height``, ``subdivisions``) or a mesh file."""
-    only(hd, hk, ("type", "length", "beam", "height", "subdivisions", "path", "scale"))
-    hull_type = choice(hd, "type", hk, "box", ("box", "mesh"))
+    """``hull``: a box, an upright cylinder (a buoy, a spar) or a mesh file.
+
+    Box: ``length``, ``beam``, ``height``, ``subdivisions``; cylinder: ``radius``, ``height``,
+    ``subdivisions`` (bands along its axis); mesh: ``path``, ``scale``.
+    """
+    only(hd, hk, ("type", "length", "beam", "height", "subdivisions", "path", "scale",
+                  "radius"))
+    hull_type = choice(hd, "type", hk, "box", HULL_TYPES)
+    for extra in {"box": ("path", "scale", "radius"), "cylinder": ("path", "scale", "length",
+                                                                   "beam"),
+                  "mesh": ("radius",)}[hull_type]:
+        if extra in hd:
+            allowed = [t for t in HULL_TYPES if extra in _HULL_TYPE_KEYS[t]]
+            raise ScenarioError(f"{hk}.{extra}", hd[extra],
+                                f"only for hull type {' or '.join(allowed)}")
+    if hull_type == "cylinder":
+        radius = number(hd, "radius", hk, 0.5, MIN_HULL_SIZE / 2, 500.0, unit="m")
+        height = number(hd, "height", hk, 1.0, MIN_HULL_SIZE, 1000.0, unit="m")
+        rings = integer(hd, "subdivisions", hk, 1, 1, 64, "(quads per box face edge; "
+                        "a cylinder's bands along its axis)")
+        mesh = cylinder_mesh(radius, height, rings=rings)
+        return BoxHull(*(float(e) for e in mesh.extents)), mesh
     if hull_type == "box":
-        for extra in ("path", "scale"):
-            if extra in hd:
-                raise ScenarioError(f"{hk}.{extra}", hd[extra], "only for hull type mesh")
         hull = BoxHull(
             length=number(hd, "length", hk, 4.0, MIN_HULL_SIZE, 1000.0, unit="m"),
             beam=number(hd, "beam", hk, 2.0, MIN_HULL_SIZE, 1000.0, unit="m"),
             height=number(hd, "height", hk, 1.0, MIN_HULL_SIZE, 1000.0, unit="m"),
         )
-        subdivisions = integer(hd, "subdivisions", hk, 1, 1, 64, "(quads per box face edge)")
+        subdivisions = integer(hd, "subdivisions", hk, 1, 1, 64, "(quads per box face edge; "
+                               "a cylinder's bands along its axis)")
         return hull, box_mesh(hull, subdivisions)
     for extra in ("length", "beam", "height", "subdivisions"):
         if extra in hd:
             raise ScenarioError(f"{hk}.{extra}", hd[extra],
-                                "only for hull type box (a mesh has its own size)")
+                                "only for hull type box or cylinder (a mesh has its own size)")
     describe(f"{hk}.path", None, "an STL or OBJ file (relative: to the scenario's folder)",
              default_doc="required with type mesh")
     path = hd.get("path")

@@ -21,8 +21,8 @@ import numpy as np
 from boat_dynamics.physics.scenario.specs import ScenarioError
 
 __all__ = ["MAX_NAME_LENGTH", "ROS_NAME_RULE", "BlockDoc", "KeyDoc", "choice", "describe",
-           "flag", "integer", "is_ros_name", "keys_read", "mapping", "number", "only", "vector",
-           "yaml_depth"]
+           "flag", "integer", "is_ros_name", "keys_read", "mapping", "number", "only", "unlisted",
+           "vector", "yaml_depth"]
 
 #: The longest boat, thruster or sensor name: each goes into topic, frame and node names,
 #: which ROS 2 caps at 255 characters (rmw's validation).
@@ -96,6 +96,16 @@ def keys_read() -> Iterator[list[KeyDoc | BlockDoc]]:
     token = _READ.set(seen)
     try:
         yield seen
+    finally:
+        _READ.reset(token)
+
+
+@contextmanager
+def unlisted() -> Iterator[None]:
+    """Read without listing the keys (a block the reader wrote itself: a buoy's boat)."""
+    token = _READ.set(None)
+    try:
+        yield
     finally:
         _READ.reset(token)
 

@@ -65,6 +65,8 @@ TfFrames = Literal["world", "rep105"]
 TF_FRAMES: tuple[TfFrames, ...] = get_args(TfFrames)
 WrenchTopics = Literal["auto", "advertised", "on_subscription"]
 WRENCH_TOPICS: tuple[str, ...] = get_args(WrenchTopics)
+#: What a body of the fleet is: a boat of ``boats``, or a buoy of ``world.buoys``.
+BodyKind = Literal["boat", "buoy"]
 #: ``wrench_topics: auto`` advertises every boat's wrench topics up to this many boats.
 ADVERTISED_WRENCH_BOATS = 100
 
@@ -131,6 +133,8 @@ class BoatSpec:
         velocity: (3,) m/s, body frame: the speed it starts with through the water, added
             to the waves' motion at the hull (``initial_pose.velocity``; its angular
             velocity is in ``initial``).
+        kind: ``boat`` (``boats``), or ``buoy`` (``world.buoys``: moored, no commands, no
+            AIS transponder).
     """
 
     name: str
@@ -140,6 +144,7 @@ class BoatSpec:
     sensors: tuple[SensorSpec, ...] = ()
     thrusters: tuple[str, ...] = ()
     velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    kind: BodyKind = "boat"
 
 
 @dataclass(frozen=True)

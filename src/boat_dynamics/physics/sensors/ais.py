@@ -92,8 +92,8 @@ def report_interval(speed: float) -> float:
 
 
 def ais_reports(spec: AisSpec, key: np.ndarray, state: AisState, t: float, own: int,
-                positions: np.ndarray, velocities: np.ndarray, headings: np.ndarray
-                ) -> tuple[list[AisReport], AisState]:
+                positions: np.ndarray, velocities: np.ndarray, headings: np.ndarray,
+                transponders: np.ndarray | None = None) -> tuple[list[AisReport], AisState]:
     """The reports due at ``t`` (s), and the receiver's state after them.
 
     Args:
@@ -105,6 +105,7 @@ def ais_reports(spec: AisSpec, key: np.ndarray, state: AisState, t: float, own: 
         positions: (B, 3) m, every boat's hull reference point, world frame.
         velocities: (B, 3) m/s, their velocities over ground, world frame.
         headings: (B,) rad, counter-clockwise from east.
+        transponders: (B,) bool, the bodies that transmit (boats, not buoys); None: all.
     """
     count = positions.shape[0]
     last = np.full(count, -math.inf) if state.last is None else state.last.copy()
@@ -112,6 +113,8 @@ def ais_reports(spec: AisSpec, key: np.ndarray, state: AisState, t: float, own: 
     due = np.array([t - last[b] >= report_interval(speed[b]) - 1e-9 for b in range(count)])
     heard = np.hypot(*(positions[:, :2] - positions[own, :2]).T) <= spec.range
     due &= heard & (np.arange(count) != own)
+    if transponders is not None:
+        due &= transponders
     noise = spec.position_sigma * standard_normal(key, state.sample, 2 * count).reshape(-1, 2)
     out = []
     for b in np.flatnonzero(due):

@@ -1,8 +1,9 @@
 """A depth sounder (echo sounder): the range from its transducer to the sea floor, with noise.
 
 The transducer at ``position`` (body frame, from the hull reference point) looks along the
-body's -z axis, so its beam tilts with the boat's roll and pitch. The floor is flat, at the
-ocean's depth h below the mean water level (z = -h, world frame; ``ocean.depth``). With p the
+body's -z axis, so its beam tilts with the boat's roll and pitch. The floor lies level at the
+ocean's depth h below the mean water level (z = -h, world frame; ``ocean.depth``), or shelving
+up to a shore (a polygon obstacle's ``slope``: :func:`slant_range`). With p the
 transducer's world position and d = R (0, 0, -1) the beam's world direction, the beam meets
 the floor at the range
 
@@ -23,6 +24,7 @@ at or above the horizontal, a reading beyond the range) is +inf; a reading neare
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,7 +32,8 @@ import numpy as np
 from boat_dynamics.physics.body.rigid_body import rotation_matrix
 from boat_dynamics.physics.sensors.noise import standard_normal
 
-__all__ = ["DepthReading", "DepthSounderSpec", "measure_depth", "slant_range"]
+__all__ = ["FLOOR_ROUNDS", "FLOOR_TOLERANCE", "DepthReading", "DepthSounderSpec",
+           "measure_depth", "slant_range"]
 
 
 @dataclass(frozen=True)
@@ -73,31 +76,57 @@ class DepthReading:
     variance: float
 
 
-def slant_range(transducer: np.ndarray, orientation: np.ndarray, depth: float) -> float:
+#: Fixed-point rounds of a beam against a shelving floor, and the range they settle to, m.
+FLOOR_ROUNDS = 50
+FLOOR_TOLERANCE = 1e-9
+
+
+def slant_range(transducer: np.ndarray, orientation: np.ndarray, depth: float,
+                floor: Callable[[np.ndarray], float] | None = None) -> float:
     """m, from the transducer along the body's -z axis to the floor at z = -``depth``.
+
+    With ``floor`` (the water's depth at a world x, y: a floor shelving to a shore,
+    :func:`boat_dynamics.physics.world.obstacles.floor_depth`), the beam p + r d meets
+    z = -floor(p_xy + r d_xy): r is the fixed point of r = (p_z + floor(p_xy + r d_xy)) / -d_z,
+    which converges while the floor's slope times the beam's tilt, tan(theta), is under 1.
 
     Args:
         transducer: (3,) m, its world position.
         orientation: (4,) the boat's attitude (x, y, z, w), body to world.
         depth: m, the ocean's depth below the mean water level (inf: deep water).
+        floor: the water's depth (m) at a world (2,) x, y, or None: ``depth`` everywhere.
 
     Returns:
         The range, m (0 when the transducer is at or below the floor); inf when the beam never
         meets the floor (deep water, or pointing at or above the horizontal).
     """
-    down = rotation_matrix(orientation)[2, 2]  # -d_z = R_zz: cos of the beam's tilt
-    if math.isinf(depth) or down <= 0.0:
+    beam = -rotation_matrix(orientation)[:, 2]  # the body's -z axis, world frame
+    down = -beam[2]  # cos of the beam's tilt
+    here = depth if floor is None else floor(transducer[:2])
+    if down <= 0.0 or math.isinf(here):
         return math.inf
-    return max(0.0, float(transducer[2]) + depth) / down
+    r = max(0.0, float(transducer[2]) + here) / down
+    if floor is None:
+        return r
+    for _ in range(FLOOR_ROUNDS):
+        below = floor(transducer[:2] + r * beam[:2])
+        if math.isinf(below):
+            return math.inf
+        after = max(0.0, float(transducer[2]) + below) / down
+        if abs(after - r) <= FLOOR_TOLERANCE:
+            return after
+        r = after
+    return r
 
 
 def measure_depth(spec: DepthSounderSpec, key: np.ndarray, sample: int, transducer: np.ndarray,
-                  orientation: np.ndarray, depth: float) -> DepthReading:
+                  orientation: np.ndarray, depth: float,
+                  floor: Callable[[np.ndarray], float] | None = None) -> DepthReading:
     """Reading number ``sample`` (no state: white noise only); arguments as :func:`slant_range`.
 
     ``key``: its noise stream (:func:`.noise.stream_key`).
     """
-    value = slant_range(transducer, orientation, depth) + spec.range_sigma * float(
+    value = slant_range(transducer, orientation, depth, floor) + spec.range_sigma * float(
         standard_normal(key, sample, 1)[0])
     if value > spec.max_range:
         value = math.inf

@@ -23,7 +23,7 @@ from functools import cached_property
 import numpy as np
 
 __all__ = ["MIN_RESTITUTION", "ContactParams", "Cylinder", "Obstacle", "Prism", "World",
-           "inside_polygon", "penetration", "restitution_of", "signed_area"]
+           "floor_depth", "inside_polygon", "penetration", "restitution_of", "signed_area"]
 
 
 @dataclass(frozen=True)
@@ -35,19 +35,23 @@ class Prism:
         points: (P, 2) m, world x, y of the polygon's corners,
             counter-clockwise (:meth:`make` orders them), P >= 3.
         top: m, world z of its top.
+        slope: the sea floor's gradient (rise / run) up to its foot, where the water's depth
+            is zero: a shelving shore or a beach (:func:`floor_depth`); inf: a wall standing
+            on the sea floor (a quay, a pier).
     """
 
     name: str
     points: np.ndarray
     top: float
+    slope: float = math.inf
 
     @classmethod
-    def make(cls, name: str, points, top: float) -> Prism:
+    def make(cls, name: str, points, top: float, slope: float = math.inf) -> Prism:
         """A prism with its corners made counter-clockwise (positive signed area)."""
         p = np.asarray(points, dtype=float).reshape(-1, 2)
         if signed_area(p) < 0.0:
             p = p[::-1].copy()
-        return cls(name, p, float(top))
+        return cls(name, p, float(top), float(slope))
 
     @cached_property
     def edges(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -194,13 +198,34 @@ def penetration(world: World, xy: np.ndarray, z: np.ndarray, velocity: np.ndarra
     return depth, normal, which
 
 
+def floor_depth(world: World, xy: np.ndarray, depth: float) -> np.ndarray:
+    """(N,) m: the water's depth at ``xy`` (N, 2) m, world x, y, over a floor shelving to shore.
+
+    The sea floor is at ``depth`` (m, the ocean's; inf: deep) but rises towards each prism of
+    finite ``slope`` s: at a distance r from its edge the water is s r deep (0 at its foot
+    and inside it), the shallowest where several meet.
+    """
+    out = np.full(xy.shape[0], float(depth))
+    for o in world.obstacles:
+        if isinstance(o, Prism) and math.isfinite(o.slope):
+            dist = _edge_distances(o, xy).min(axis=1)
+            out = np.minimum(out, np.where(inside_polygon(o.points, xy), 0.0, o.slope * dist))
+    return out
+
+
+def _edge_distances(prism: Prism, xy: np.ndarray) -> np.ndarray:
+    """(N, P) m: each point's distance to each edge of ``prism``."""
+    a, e, _ = prism.edges
+    rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
+    t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)
+    return np.hypot(*np.moveaxis(rel - t[..., None] * e[None], -1, 0))
+
+
 def _in_prism(prism: Prism, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(N,) depth inside ``prism`` (0 outside) and (N, 2) the outward normal of the way out."""
-    a, e, n = prism.edges
-    rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
+    _, _, n = prism.edges
     inside = inside_polygon(prism.points, xy)
-    t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)
-    dist = np.hypot(*np.moveaxis(rel - t[..., None] * e[None], -1, 0))  # (N, P)
+    dist = _edge_distances(prism, xy)
     way = np.argmin(dist, axis=1)
     depth = np.where(inside, dist[np.arange(xy.shape[0]), way], 0.0)
     return depth, np.where(inside[:, None], n[way], 0.0)

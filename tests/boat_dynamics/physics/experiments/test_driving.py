@@ -95,7 +95,8 @@ def _boats() -> list[tuple[str, str]]:
     out, seen, calm = [], set(), []
     for path in sorted(SCENARIOS.glob("*.yaml")):
         raw, sc = yaml.safe_load(path.read_text()), load_scenario(path)
-        for entry, b in zip(raw["boats"], sc.boats, strict=True):
+        boats = [b for b in sc.boats if b.kind == "boat"]  # not world.buoys
+        for entry, b in zip(raw["boats"], boats, strict=True):
             boat = json.dumps({k: v for k, v in entry.items() if k not in _PER_BOAT},
                               sort_keys=True)
             if not sc.sea.components:

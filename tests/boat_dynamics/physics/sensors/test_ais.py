@@ -49,6 +49,18 @@ def test_each_boat_reports_at_its_interval_within_range_and_not_the_receiver_its
     assert heard[3] == [0, 180, 360]
 
 
+def test_a_buoy_has_no_transponder_and_is_never_reported():
+    positions, velocities, headings = _fleet()
+    transmits = np.array([True, True, False, True, True])  # boat 2: a buoy
+    heard = set()
+    state = AisState()
+    for k in range(200):
+        reports, state = ais_reports(AisSpec(position_sigma=0.0), KEY, state, float(k), 0,
+                                     positions, velocities, headings, transmits)
+        heard |= {r.boat for r in reports}
+    assert heard == {1, 3}
+
+
 def test_a_report_says_where_and_how_the_boat_goes():
     positions, velocities, headings = _fleet()
     reports, _ = ais_reports(AisSpec(position_sigma=0.0), KEY, AisState(), 0.0, 0, positions,

@@ -68,3 +68,35 @@ def test_white_noise_has_the_configured_sigma_and_zero_mean():
     assert measure_depth(spec, key, 0, np.zeros(3), q, 30.0).variance == pytest.approx(sigma**2)
     # reading k of a stream is the same whenever it is drawn
     assert measure_depth(spec, key, 17, np.zeros(3), q, 30.0).range == errors[17] + truth
+
+
+def _beach(slope: float):
+    """A shore east of x = 40 (a square 40..140 x -50..50), its floor rising at ``slope``."""
+    from boat_dynamics.physics.world.obstacles import Prism, World, floor_depth
+
+    world = World((Prism.make("beach", [[40, -50], [140, -50], [140, 50], [40, 50]], 2.0,
+                              slope),))
+    return lambda xy: float(floor_depth(world, np.asarray(xy)[None, :], 30.0)[0])
+
+
+@pytest.mark.parametrize("roll, pitch, yaw", [(0.0, 0.0, 0.0), (0.2, 0.0, 0.0),
+                                              (0.0, -0.25, 0.0), (0.15, 0.2, 1.2)])
+def test_over_a_shelving_shore_the_beam_meets_the_sloping_floor(roll, pitch, yaw):
+    # the floor z = -s (40 - x) west of the shore: the beam p + r d meets it at
+    # r = (p_z + s (40 - p_x)) / (s d_x - d_z) (closed form for the plane)
+    s, p = 0.1, np.array([20.0, 3.0, -0.4])
+    q = quat_from_euler(roll, pitch, yaw)
+    d = -rotation_matrix(q)[:, 2]
+    expected = (p[2] + s * (40.0 - p[0])) / (s * d[0] - d[2])
+    assert slant_range(p, q, 30.0, _beach(s)) == pytest.approx(expected, abs=1e-8)
+    # offshore, where the slope reaches the ocean's 30 m: the level floor
+    far = np.array([-500.0, 0.0, -0.4])
+    assert slant_range(far, q, 30.0, _beach(s)) == pytest.approx(slant_range(far, q, 30.0))
+
+
+def test_on_the_beach_it_reads_no_water_and_a_flat_floor_needs_no_search():
+    q = quat_from_euler(0.0, 0.0, 0.0)
+    assert slant_range(np.array([45.0, 0.0, -0.4]), q, 30.0, _beach(0.1)) == 0.0
+    # 1 m off: 0.1 m of water under a transducer 0.4 m down: aground, 0
+    assert slant_range(np.array([39.0, 0.0, -0.4]), q, 30.0, _beach(0.1)) == 0.0
+    assert slant_range(np.array([30.0, 0.0, -0.4]), q, 30.0, _beach(0.1)) == pytest.approx(0.6)

@@ -98,3 +98,17 @@ def test_a_regular_polygon_against_its_apothem(sides, radius, turn, cx, cy, seed
     np.testing.assert_allclose(depth[clear], expected[clear], atol=1e-9 * radius)
     inside = expected > 1e-9 * radius
     np.testing.assert_allclose(normal[inside], n[np.argmin(slack[inside], axis=1)], atol=1e-9)
+
+
+def test_the_floor_shelves_to_zero_at_a_sloped_shore_and_nowhere_else():
+    from boat_dynamics.physics.world.obstacles import Prism, World, floor_depth
+
+    shore = Prism.make("shore", [[0, 0], [10, 0], [10, 10], [0, 10]], 2.0, 0.05)
+    quay = Prism.make("quay", [[-30, 0], [-20, 0], [-20, 10]], 2.0)  # a wall: no shelving
+    world = World((shore, quay))
+    xy = np.array([[5.0, 5.0], [5.0, -20.0], [13.0, 14.0], [-25.0, -1.0], [5.0, -1000.0]])
+    depth = floor_depth(world, xy, 40.0)
+    # inside; 20 m south of its edge; 5 m from its corner; by the quay; far offshore
+    np.testing.assert_allclose(depth, [0.0, 1.0, 0.25, 0.05 * math.hypot(25, 1), 40.0],
+                               atol=1e-12)  # the quay's point is nearest the shore's corner
+    assert np.all(floor_depth(World((quay,)), xy, 40.0) == 40.0)
