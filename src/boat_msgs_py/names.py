@@ -28,6 +28,7 @@ __all__ = [
     "POSE",
     "RECORDER_NODE",
     "REPLAY_NODE",
+    "RESET",
     "ROSOUT",
     "SAMPLE_SURFACE",
     "STEP_DONE",
@@ -103,6 +104,9 @@ LOCKSTEP = "/boatsim/lockstep"
 #: published before the subscription has matched the publisher is lost, and the simulation
 #: would wait for it for ever.
 LOCKSTEP_READY = "/boatsim/lockstep_ready"
+#: boat_msgs/srv/Reset: a new episode, every boat at the scenario's initial state or a given
+#: one, the sensors' noise seeded (the dynamics node of a one-process run serves it).
+RESET = "/boatsim/reset"
 #: std_msgs/UInt64, latched: the step barrier's grant "a dynamics process may step while its
 #: step count is below this" (``run --fast`` over several processes: the clock owner, in the
 #: ocean's process, publishes it).

@@ -10,8 +10,11 @@ made for a lone boat in a world without obstacles.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from boat_msgs.msg import Collision
+from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Point, Vector3
 from rclpy.node import Node
 
@@ -22,7 +25,6 @@ from boat_dynamics.physics.force_models.collision import Touches
 from boat_dynamics.physics.scenario import BoatSpec
 from boat_dynamics.physics.world.obstacles import World
 from boat_msgs_py import names
-from boat_msgs_py.convert import seconds_to_time
 from boat_msgs_py.qos import COLLISION_QOS
 from boat_msgs_py.tap import GraphWatch, Tap, TappedPublisher
 
@@ -55,6 +57,11 @@ class CollisionEvents:
                              np.zeros((count, 2)), np.zeros(count), np.zeros(count))
         self._queued: list[tuple[float, int, Collision]] = []
 
+    def restart(self) -> None:
+        """A new episode: nothing touching, nothing queued (no end event for the last one)."""
+        self._last.other[:] = -1
+        self._queued.clear()
+
     def observe(self, system: System, state: FleetState, done: Step) -> None:
         """Queue the events of the step from ``state`` (``done``: that step's result)."""
         if not self._pubs:
@@ -76,10 +83,11 @@ class CollisionEvents:
             mine[held] = new[held]
         self._last.other[:] = now.other
 
-    def publish(self, epoch: float) -> None:
-        """Publish the queued events (stamps: their states' times after ``epoch``)."""
+    def publish(self, stamp_ns: Callable[[float], int]) -> None:
+        """Publish the queued events (``stamp_ns``: a state's time, s -> its stamp, ns)."""
         for t, i, msg in self._queued:
-            msg.header.stamp = seconds_to_time(t, epoch)
+            sec, nanosec = divmod(stamp_ns(t), 1_000_000_000)
+            msg.header.stamp = Time(sec=sec, nanosec=nanosec)
             self._pubs[i].publish(msg)
         self._queued.clear()
 

@@ -17,6 +17,7 @@ from typing import Literal
 import numpy as np
 from boat_msgs.msg import Environment as EnvironmentMsg
 from boat_msgs.msg import WaveField as WaveFieldMsg
+from boat_msgs.srv import Reset as ResetSrv
 from builtin_interfaces.msg import Time
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor, SetParametersResult
 from rclpy.context import Context
@@ -54,6 +55,7 @@ from boat_dynamics.physics.scenario.specs import (
 )
 from boat_dynamics.ros.collisions import CollisionEvents
 from boat_dynamics.ros.outputs import FleetPublisher, StartInterrupted
+from boat_dynamics.ros.reset import ResetError, ResetPlan, check_request, placed_state
 from boat_msgs_py import names
 from boat_msgs_py.cdr import clock_template, stamp_ns
 from boat_msgs_py.convert import (
@@ -82,28 +84,56 @@ LockstepRole = Literal["follow", "announce", "none"]
 class SimClock:
     """The one simulation clock shared by the nodes of a run.
 
+    A run's time goes on forward through its episodes (``/boatsim/reset``): each episode's
+    simulation time starts at 0, and its stamps where the last one's ended, a step later.
+
     Attributes:
         rate_hz: physics steps per simulated second.
-        epoch: s, message stamp of simulation time 0.
-        steps: physics steps taken.
+        epoch: s, message stamp of simulation time 0 of the first episode.
+        steps: physics steps taken in this episode.
+        offset_ns: ns between the first episode's time 0 and this one's (integer: a stamp
+            stays exactly a step after the last, whatever the wall-clock epoch).
+        episodes: episodes begun since the run started (the first is 0).
     """
 
     rate_hz: float
     epoch: float = 0.0
     steps: int = 0
+    offset_ns: int = 0
+    episodes: int = 0
 
     @property
     def t(self) -> float:
         """Simulation time, s (steps / rate, so it does not accumulate rounding)."""
         return self.steps / self.rate_hz
 
+    @property
+    def elapsed(self) -> float:
+        """Simulation time since the run started, s: every episode's (t while never reset)."""
+        return self.offset_ns * 1e-9 + self.t
+
+    @property
+    def episode_epoch(self) -> float:
+        """s, the stamp of this episode's simulation time 0 (as a float: the ocean's epoch)."""
+        return self.epoch + self.offset_ns * 1e-9
+
     def stamp_ns(self) -> int:
         """Message / bag timestamp of the current simulation time, ns (integer arithmetic)."""
-        return stamp_ns(self.t, self.epoch)  # as the ocean's stamps
+        return self.stamp_ns_at(self.t)
+
+    def stamp_ns_at(self, t: float) -> int:
+        """The stamp, ns, of simulation time ``t`` (s) of this episode."""
+        return stamp_ns(t, self.epoch) + self.offset_ns  # as the ocean's stamps
 
     def stamp(self) -> tuple[int, int]:
         """(sec, nanosec) of :meth:`stamp_ns`."""
         return divmod(self.stamp_ns(), 1_000_000_000)
+
+    def new_episode(self) -> None:
+        """Simulation time back to 0, stamped one step after the current step's stamp."""
+        self.offset_ns += stamp_ns((self.steps + 1) / self.rate_hz)  # the next step's
+        self.steps = 0
+        self.episodes += 1
 
 
 @dataclass
@@ -241,6 +271,10 @@ class DynamicsNode(Node):
                              "them afloat with boat_dynamics.physics.core.pipeline.init_scenario)")
         self._system = System.build([spec.params for spec in scenario.boats])
         self._state = FleetState.stack([spec.initial for spec in scenario.boats])
+        self._initial = self._state  # where a reset (/boatsim/reset) starts the boats again
+        self._seed = sim.seed  # the sensors' noise seed of a reset that gives none
+        self._reset_service = None  # serve_reset
+        self._new_episode: Callable[[], None] | None = None  # the run's part of a reset
         self._forces: FleetForces | None = None  # acting during the last step
         #: boat index -> the simulation time (s) its state diverged (non-finite, or faster
         #: than any boat): it is stopped (held where it was, at rest), reported, and the run
@@ -262,6 +296,7 @@ class DynamicsNode(Node):
                 "endpoints a boat more to make); a recording holds them all")
         self._make_lockstep(lockstep)  # before the boats' command subscriptions
         self._make_fleet(scenario, stopped)
+        self._intake_start = self.intake.snapshot()  # no command yet: a reset's intake
         self._before: FleetState | None = None  # at the start of the last (sub)step: the IMUs'
         if not deferred:
             self.start()
@@ -419,6 +454,70 @@ class DynamicsNode(Node):
         """Publish what is published once, stamped with the clock (its epoch is now known)."""
         sec, nanosec = self._sim_clock.stamp()
         self.outputs.transforms.publish_static(Time(sec=sec, nanosec=nanosec))
+
+    # ------------------------------------------------------------------ reset
+
+    def serve_reset(self, new_episode: Callable[[], None]) -> None:
+        """Serve /boatsim/reset (a one-process run: every boat and the ocean here).
+
+        Args:
+            new_episode: called once the boats and the clock are reset, before the new
+                episode's first outputs: the run restarts the ocean's time there.
+        """
+        self._new_episode = new_episode
+        self._reset_service = self.create_service(ResetSrv, names.RESET, self._on_reset)
+
+    def _on_reset(self, request: ResetSrv.Request, response: ResetSrv.Response
+                  ) -> ResetSrv.Response:
+        """A reset request: checked whole, then applied; a refusal changes nothing."""
+        response.episode = self._sim_clock.episodes
+        try:
+            plan = check_request(
+                request.seed, list(request.names),
+                [(p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
+                  p.orientation.z, p.orientation.w) for p in request.poses],
+                [(v.linear.x, v.linear.y, v.linear.z, v.angular.x, v.angular.y, v.angular.z)
+                 for v in request.twists],
+                [b.spec.name for b in self.boats])
+        except ResetError as exc:
+            response.success, response.message = False, f"refused: {exc}"
+            self.get_logger().error(f"{names.RESET}: {response.message}")
+            return response
+        if self.sea is None:
+            response.success, response.message = False, "refused: no sea state received yet"
+            return response
+        self.reset(plan)
+        sec, nanosec = self._sim_clock.stamp()
+        response.stamp = Time(sec=sec, nanosec=nanosec)
+        response.success, response.episode = True, self._sim_clock.episodes
+        response.message = (f"episode {self._sim_clock.episodes}: simulation time 0 at stamp "
+                            f"{sec}.{nanosec:09d}; {len(plan.placed)} boat(s) placed, the "
+                            f"others at the scenario's initial state; sensor seed "
+                            f"{self._seed if plan.seed is None else plan.seed}")
+        self.get_logger().info(f"{names.RESET}: {response.message}")
+        return response
+
+    def reset(self, plan: ResetPlan) -> None:
+        """Begin a new episode: the boats at ``plan``'s state at t = 0, then its first outputs.
+
+        The clock's stamps go on (:meth:`SimClock.new_episode`); the command intake, the
+        sensors' noise (seeded by the plan), diverged boats and contact events start afresh.
+        Parameters (control modes, cmd_timeout, publish_tf) and the lockstep counts stay.
+        """
+        self._state = placed_state(self._system, self._initial, plan)
+        self._before = None  # no sensor readings at time 0, as at a run's start
+        self._contact, self._forces, self._towing = None, None, None
+        self.stopped.clear()
+        counts = [(b.received, b.ignored, b.clamped) for b in self.intake.boats]
+        self.intake.restore(self._intake_start)  # in place: the subscriptions hold it
+        for b, (received, ignored, clamped) in zip(self.intake.boats, counts, strict=True):
+            b.received, b.ignored, b.clamped = received, ignored, clamped  # the run's counts
+        self.outputs.sensors.reseed(self._seed if plan.seed is None else plan.seed)
+        self.collisions.restart()
+        self._sim_clock.new_episode()
+        if self._new_episode is not None:
+            self._new_episode()
+        self.publish_outputs()
 
     # ------------------------------------------------------------------ snapshots
 
@@ -603,7 +702,7 @@ class DynamicsNode(Node):
 
     def may_step(self) -> bool:
         """Lockstep: the replayer has granted the next step and its commands have arrived."""
-        return (self._sim_clock.t < self.granted_until - 1e-9
+        return (self._sim_clock.elapsed < self.granted_until - 1e-9
                 and self.commands_received >= self.granted_commands)
 
     def _record_command(self, topic: str, msg: Float64) -> None:
@@ -736,7 +835,7 @@ class DynamicsNode(Node):
             self.outputs.wrenches(sec, nanosec, forces, time.monotonic(),
                                   self._carriage if self._towing is not None else None)
             self.outputs.diagnostics(sec, nanosec, self._statuses())
-        self.collisions.publish(self._sim_clock.epoch)
+        self.collisions.publish(self._sim_clock.stamp_ns_at)
 
     def _state_values(self) -> np.ndarray:
         """(B, 13): each boat's reference point, orientation, its velocity and angular velocity.

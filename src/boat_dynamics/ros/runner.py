@@ -22,6 +22,7 @@ from dataclasses import dataclass, replace
 from typing import TextIO
 
 import rclpy
+from boat_msgs.srv import Reset as ResetSrv
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 
@@ -336,6 +337,15 @@ class _Parent:
             self.go.set()
 
 
+def _refuse_reset(request: ResetSrv.Request, response: ResetSrv.Response) -> ResetSrv.Response:
+    """/boatsim/reset in a run of several processes: refused, saying why."""
+    response.success = False
+    response.message = ("refused: a run of several processes (--processes, --shards) cannot "
+                        "be reset: its boats' processes step apart; reset is served by a "
+                        "one-process `boatsim run` (--fast --lockstep for learning loops)")
+    return response
+
+
 def _lockstep_role(options: RunOptions) -> LockstepRole:
     """The dynamics node's part in a lockstep replay: a shard's clock owner follows it."""
     if not options.lockstep:
@@ -477,6 +487,8 @@ class _Loop:
                                          advertise_wrenches=self.advertise_wrenches,
                                          context=self.participants.new() if self.nodes else None)
             self.nodes.append(self.dynamics)
+            if options.process.role == "all":
+                self.dynamics.serve_reset(self._new_episode)
             if options.process.resume is not None:
                 self._resume(deferred)
             if fast and options.process.shard is not None:
@@ -507,6 +519,8 @@ class _Loop:
                                if options.process.role == "all" else None,
                                environment=scenario.environment)
         self.nodes.append(self.ocean)
+        if options.process.role == "ocean":  # its boats are in other processes
+            self.ocean.create_service(ResetSrv, names.RESET, _refuse_reset)
         # the obstacles, latched, by the one process that owns the ocean
         self.world_markers = WorldPublisher(self.ocean, scenario.world, tap)
         self.world_markers.publish()
@@ -572,15 +586,16 @@ class _Loop:
         rate = self.scenario.simulation.rate_hz
         next_discovery = time.monotonic() + _DISCOVERY_PERIOD
         next_type_check = time.monotonic() + _TYPE_CHECK_PERIOD
-        self.display.start(self.clock.t)
-        while ((self.duration is None or self.clock.t < self.duration - 0.5 / rate)
+        self.display.start(self.clock.elapsed)
+        # the duration is the run's, every episode's (/boatsim/reset)
+        while ((self.duration is None or self.clock.elapsed < self.duration - 0.5 / rate)
                and not self.stop.is_set()):
             if not self._hold_for_grant(wall0):
                 break
             self._step(wall0)
             next_discovery = self._record_due(next_discovery)
             if self.dynamics is not None:
-                self.display.update(self.dynamics, self.clock.t)
+                self.display.update(self.dynamics, self.clock.elapsed)
                 if time.monotonic() > next_type_check:
                     next_type_check = time.monotonic() + _TYPE_CHECK_PERIOD
                     self.dynamics.check_command_types()
@@ -591,7 +606,7 @@ class _Loop:
                               "process of a run with the same scenario file")
             return 2
         if self.dynamics is not None:
-            self.display.update(self.dynamics, self.clock.t, force=True)
+            self.display.update(self.dynamics, self.clock.elapsed, force=True)
             if self.dynamics.stopped:
                 names_ = ", ".join(self.dynamics.boats[i].spec.name or "(root)"
                                    for i in self.dynamics.stopped)
@@ -610,8 +625,11 @@ class _Loop:
             self.dynamics.step()
         else:
             self.clock.steps += 1
+        episode = self.clock.episodes
         if not self.fast:  # after the step is due, not a step early
             self._serve_callbacks(wall0)
+            if self.clock.episodes != episode:  # reset meanwhile: its outputs are out
+                return
         if self.dynamics is not None:
             self.dynamics.publish_outputs()
             self._report()
@@ -650,6 +668,18 @@ class _Loop:
         if self.bag is not None:
             self.bag.flush()
         save(self.options.process.checkpoint, self.dynamics.snapshot())
+
+    def _new_episode(self) -> None:
+        """A reset's part outside the dynamics node: the ocean's time 0 is the new episode's.
+
+        /ocean/wave_field (and /ocean/environment) are republished stamped with it, the
+        surface server's time goes back to 0 (sampled as the boats meet the waves again).
+        """
+        if self.ocean is not None:
+            self.ocean.start(self.clock.episode_epoch)
+            self.ocean.advance(self.clock.t)
+        if self.shared_time is not None:
+            self.shared_time.write(self.clock.t)
 
     def _handshake(self) -> bool:
         """--processes start-up: say ready, wait for the parent's epoch, publish with it.
@@ -849,7 +879,7 @@ class _Loop:
         if self.fast and self.options.lockstep:
             spin_pending(self.executor)
             return
-        step_due = wall0 + self.clock.t
+        step_due = wall0 + self.clock.elapsed
         if self.fast or step_due <= time.time():
             if (now := time.monotonic()) >= self._next_spin:
                 spin_pending(self.executor)

@@ -244,6 +244,19 @@ class SensorPublisher:
             else:
                 sensor.state = restore(sensor.state, arrays, f"sensor{k}.")
 
+    def reseed(self, seed: int) -> None:
+        """A new episode: every sensor's noise from its first reading again, under ``seed``.
+
+        Each stream's key is the one ``simulation.seed: seed`` gives (the boat's and the
+        sensor's names under it); messages held for a latency are dropped.
+        """
+        for _, sensor in self._sensors:
+            sensor.key = stream_key(seed, sensor.boat.name, sensor.spec.name)
+            sensor.state = _first_state(sensor.spec, sensor.key)
+            if sensor.delay is not None:
+                sensor.delay.clear()
+        self._t = 0.0
+
     def publish_due(self, due, stamp, center_of_mass: np.ndarray, before: FleetState,
                     after: FleetState, depth: float = math.inf,
                     sea: WaveField | None = None) -> None:
@@ -429,34 +442,49 @@ def _fleet_frames(center_of_mass: np.ndarray, after: FleetState
     return rot, after.position - np.einsum("bij,bj->bi", rot, center_of_mass)
 
 
+def _first_state(spec: SensorSpec, key: np.ndarray) -> object:
+    """A sensor's first noise state under ``key`` (white noise only: its sample count, 0)."""
+    if isinstance(spec, ImuSpec):
+        return imu_start(spec, key)
+    if isinstance(spec, GnssSpec):
+        return gnss_start(spec, key)
+    if isinstance(spec, AisSpec):
+        return AisState()
+    if isinstance(spec, OdometrySpec) and spec.drift:
+        return DeadReckoning()
+    return 0
+
+
 def _publishers(node: Node, boat: str, spec: SensorSpec, key: np.ndarray, tap: Tap | None
                 ) -> tuple[list[TappedPublisher], object]:
-    """A sensor's publishers and its first noise state (white noise only: its sample count)."""
+    """A sensor's publishers and its first noise state (:func:`_first_state`)."""
+    return _sensor_publishers(node, boat, spec, tap), _first_state(spec, key)
+
+
+def _sensor_publishers(node: Node, boat: str, spec: SensorSpec, tap: Tap | None
+                       ) -> list[TappedPublisher]:
+    """A sensor's publishers."""
     if isinstance(spec, ImuSpec):
-        return ([TappedPublisher(node, Imu, names.imu_topic(boat, spec.name), SENSOR_QOS,
-                                 tap)], imu_start(spec, key))
+        return [TappedPublisher(node, Imu, names.imu_topic(boat, spec.name), SENSOR_QOS, tap)]
     if isinstance(spec, GnssSpec):
         heading = ([] if spec.heading_baseline is None else
                    [TappedPublisher(node, Imu, names.gnss_heading_topic(boat, spec.name),
                                     SENSOR_QOS, tap)])
-        return ([TappedPublisher(node, NavSatFix, names.gnss_fix_topic(boat, spec.name),
-                                 SENSOR_QOS, tap),
-                 TappedPublisher(node, TwistWithCovarianceStamped,
-                                 names.gnss_vel_topic(boat, spec.name), SENSOR_QOS, tap),
-                 *heading], gnss_start(spec, key))
-    if isinstance(spec, MagnetometerSpec):
-        return ([TappedPublisher(node, MagneticField, names.sensor_data_topic(boat, spec.name),
-                                 SENSOR_QOS, tap)], 0)
-    if isinstance(spec, DepthSounderSpec):
-        return ([TappedPublisher(node, Range, names.sensor_data_topic(boat, spec.name),
-                                 SENSOR_QOS, tap)], 0)
+        return [TappedPublisher(node, NavSatFix, names.gnss_fix_topic(boat, spec.name),
+                                SENSOR_QOS, tap),
+                TappedPublisher(node, TwistWithCovarianceStamped,
+                                names.gnss_vel_topic(boat, spec.name), SENSOR_QOS, tap),
+                *heading]
+    if isinstance(spec, MagnetometerSpec | DepthSounderSpec):
+        return [TappedPublisher(node, MagneticField if isinstance(spec, MagnetometerSpec)
+                                else Range, names.sensor_data_topic(boat, spec.name),
+                                SENSOR_QOS, tap)]
     if isinstance(spec, AisSpec):
-        return ([TappedPublisher(node, AisReportMsg, names.ais_topic(boat, spec.name),
-                                 SENSOR_QOS, tap)], AisState())
+        return [TappedPublisher(node, AisReportMsg, names.ais_topic(boat, spec.name),
+                                SENSOR_QOS, tap)]
     if isinstance(spec, LidarSpec):
-        return ([TappedPublisher(node, LaserScan, names.scan_topic(boat, spec.name), SENSOR_QOS,
-                                 tap) if spec.rings == 1 else
-                 TappedPublisher(node, PointCloud2, names.points_topic(boat, spec.name),
-                                 SENSOR_QOS, tap)], 0)
-    return ([TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS,
-                             tap)], DeadReckoning() if spec.drift else 0)
+        return [TappedPublisher(node, LaserScan, names.scan_topic(boat, spec.name), SENSOR_QOS,
+                                tap) if spec.rings == 1 else
+                TappedPublisher(node, PointCloud2, names.points_topic(boat, spec.name),
+                                SENSOR_QOS, tap)]
+    return [TappedPublisher(node, Odometry, names.boat_topic(boat, spec.name), SENSOR_QOS, tap)]

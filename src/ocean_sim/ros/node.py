@@ -295,8 +295,13 @@ class OceanNode(Node):
                 self._cloud_rate = float(p.value)
 
     def start(self, epoch: float) -> None:
-        """Take the stamp of simulation time 0 (s); publish the sea state and environment."""
+        """Take the stamp of simulation time 0 (s); publish the sea state and environment.
+
+        Also a new episode's (``/boatsim/reset``): its time 0 is stamped later, and the
+        surface cloud's schedule starts again from it.
+        """
         self._epoch = epoch
+        self._next_cloud_t = 0.0
         self.environment.start(epoch)
         self.publish_wave_field()
 
