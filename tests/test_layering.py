@@ -112,8 +112,9 @@ def test_boat_dynamics_has_only_the_layers_at_its_top():
     # bags.py: the deprecated alias of tools/bags.py (CHANGES.md, "Changes to the contract");
     # data: package data (coefficient files), no code
     # gym.py: Gymnasium environments, an adapter over the physics core without ROS (below)
+    # gym_ros.py: the same task over a running simulation (ROS lockstep)
     assert top == ["__init__.py", "__main__.py", "bags.py", "cli.py", "data", "gym.py",
-                   "physics", "ros", "tools"]
+                   "gym_ros.py", "physics", "ros", "tools"]
     assert not list((SRC / "boat_dynamics" / "data").rglob("*.py"))
 
 

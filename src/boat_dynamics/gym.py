@@ -201,6 +201,14 @@ class _Fleet:
             if diverged.any():
                 self.state = self.state.held(before, diverged)
                 stopped |= diverged
+        return self.score(stopped)
+
+    def score(self, stopped: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(N,) reward, terminated and truncated of the state reached by a control period.
+
+        Args:
+            stopped: (N,) bool, the copies whose state diverged during it.
+        """
         roll, pitch, _ = _euler(self.state.orientation)
         lost = stopped | (np.abs(roll) > math.pi / 2) | (np.abs(pitch) > math.pi / 2)
         distance = self._distance()
