@@ -93,7 +93,7 @@ SAMPLE_SURFACE = "/ocean/sample_surface"
 #: sensor_msgs/PointCloud2 of the surface around the boats, for viewers (RViz, Foxglove).
 SURFACE_CLOUD = "/ocean/surface"
 CLOCK = "/clock"
-#: std_msgs/Float64MultiArray [T, n]: a lockstep client's grant "advance while t < T; I have
+#: std_msgs/Float64MultiArray [T, n]: a lockstep client's grant "advance while /clock < T; I have
 #: sent n command messages" (``boatsim run --fast --lockstep`` obeys it, from any node:
 #: ``boatsim replay`` or a client of any name, docs/DESIGN.md "Lockstep: the client's recipe").
 LOCKSTEP = "/boatsim/lockstep"
