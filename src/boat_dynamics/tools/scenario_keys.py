@@ -80,7 +80,7 @@ EXERCISES: dict[str, dict] = {
                      {"type": "depth_sounder"},
                      {"type": "gnss", "name": "dual", "heading_baseline": [1.0, 0.0, 0.0]},
                      {"type": "lidar", "rings": 4, "sea": "clutter"},
-                     {"type": "ais", "range": 20000.0}])],
+                     {"type": "ais", "range": 20000.0}, {"type": "radar"}])],
     },
     "a beaufort sea, a mesh hull with coefficients, sample points, named thrusters": {
         "ocean": {"spectrum": {"beaufort": 4, "spreading": None}},

@@ -39,15 +39,17 @@ from boat_dynamics.physics.sensors import (
 )
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
 from boat_dynamics.physics.sensors.lidar import SEA_RETURNS
+from boat_dynamics.physics.sensors.radar import RadarSpec
 
 __all__ = ["MAX_LATENCY", "MAX_MOUNT", "SENSOR_TYPES", "datum_block", "magnetic_field_block",
            "sensors_block"]
 
 #: The ``type`` of a sensor.
-SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder", "lidar", "ais")
+SENSOR_TYPES = ("imu", "gnss", "odometry", "magnetometer", "depth_sounder", "lidar", "ais",
+                "radar")
 #: Hz, each type's default ``rate_hz``.
 _RATES = {"imu": 100.0, "gnss": 5.0, "odometry": 50.0, "magnetometer": 20.0,
-          "depth_sounder": 10.0, "lidar": 10.0, "ais": 1.0}
+          "depth_sounder": 10.0, "lidar": 10.0, "ais": 1.0, "radar": 10.0}
 
 
 def datum_block(raw: Any, key: str = "simulation.datum") -> Datum:
@@ -129,11 +131,15 @@ def sensors_block(raw: Any, key: str, physics_rate: float) -> tuple[SensorSpec, 
 MAX_LATENCY = 60.0
 #: The keys of some types of sensor only: key -> those types.
 _TYPE_KEYS = {"outages": ("gnss",), "drift": ("odometry",), "heading_baseline": ("gnss",),
-              "field_of_view_deg": ("depth_sounder",), "min_range": ("depth_sounder", "lidar"),
-              "max_range": ("depth_sounder", "lidar"), "samples": ("lidar",),
+              "field_of_view_deg": ("depth_sounder",),
+              "min_range": ("depth_sounder", "lidar", "radar"),
+              "max_range": ("depth_sounder", "lidar", "radar"), "samples": ("lidar",),
               "horizontal_fov_deg": ("lidar",), "rings": ("lidar",),
               "vertical_fov_deg": ("lidar",), "sea": ("lidar",),
-              "clutter_probability": ("lidar",), "range": ("ais",)}
+              "clutter_probability": ("lidar",), "range": ("ais",), "rpm": ("radar",),
+              "spokes": ("radar",), "beamwidth_deg": ("radar",),
+              "range_resolution": ("radar",), "detection_range": ("radar",),
+              "sea_clutter": ("radar",)}
 
 
 def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
@@ -150,7 +156,7 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
              "bias_correlation_time, velocity_sigma, heading_sigma_deg; odometry: "
              "position_sigma, orientation_sigma_deg, velocity_sigma, "
              "angular_velocity_sigma_deg; magnetometer: sigma, hard_iron, soft_iron; "
-             "depth_sounder, lidar: range_sigma; ais: position_sigma",
+             "depth_sounder, lidar: range_sigma; ais: position_sigma; radar: none",
              default_doc="each key's default below")
     noise = mapping(d.get("noise"), f"{k}.noise")
     for only_key, only_types in _TYPE_KEYS.items():
@@ -169,6 +175,9 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
         spec = _depth_sounder(name, rate, position, d, noise, k)
     elif kind == "lidar":
         spec = _lidar(name, rate, position, d, noise, k)
+    elif kind == "radar":
+        only(noise, f"{k}.noise", ())
+        spec = _radar(name, rate, position, d, k)
     elif kind == "ais":
         only(noise, f"{k}.noise", ("position_sigma",))
         spec = AisSpec(name, rate, position,
@@ -207,13 +216,15 @@ def _depth_sounder(name: str, rate: float, position: np.ndarray, d: Mapping[str,
 
 def _ranges(d: Mapping[str, Any], key: str, nearest: float, farthest: float
             ) -> tuple[float, float]:
-    """A depth sounder's or a lidar's ``min_range`` and ``max_range`` (m), the defaults given."""
+    """A depth sounder's, a lidar's or a radar's ``min_range`` and ``max_range`` (m)."""
     low = number(d, "min_range", key, nearest, 0.0, 1000.0,
-                 unit="m (a depth_sounder reads -inf nearer; a lidar, no return)",
-                 default_doc="depth_sounder 0.5, lidar 0.3")
+                 unit="m (a depth_sounder reads -inf nearer; a lidar, no return; a radar, "
+                 "no bin whose centre is nearer)",
+                 default_doc="depth_sounder 0.5, lidar 0.3, radar 20")
     high = number(d, "max_range", key, farthest, 0.0, 12000.0, low_open=True,
                   unit="m (farther, or no echo: a depth_sounder reads +inf; a lidar, no "
-                  "return)", default_doc="depth_sounder 200, lidar 100")
+                  "return; a radar, no bin whose centre is farther)",
+                  default_doc="depth_sounder 200, lidar 100, radar 1852")
     if high <= low:
         raise ScenarioError(f"{key}.max_range", high, f"must be greater than min_range "
                                                       f"({low:g} m)")
@@ -253,6 +264,40 @@ def _lidar(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
     return LidarSpec(name, rate, position, samples, math.radians(horizontal), rings,
                      math.radians(vertical) if rings > 1 else 0.0, nearest, farthest, sigma,
                      sea, clutter)
+
+
+#: The most range bins a radar's spoke has (max_range / range_resolution).
+MAX_BINS = 20_000
+
+
+def _radar(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
+           key: str) -> RadarSpec:
+    """A radar (:class:`RadarSpec`): its antenna, beam, range bins and sea clutter.
+
+    ``rpm``, ``spokes``, ``beamwidth_deg``, ``range_resolution``, ``min_range``,
+    ``max_range``, ``detection_range``, ``sea_clutter``; no ``noise``.
+    """
+    default = RadarSpec()
+    rpm = number(d, "rpm", key, default.rpm, 0.0, 120.0, low_open=True,
+                 unit="turns a minute (a radar antenna's)")
+    spokes = integer(d, "spokes", key, default.spokes, 8, 16384,
+                     note="(a radar's spokes a revolution)")
+    width = number(d, "beamwidth_deg", key, round(math.degrees(default.beamwidth), 6), 0.0,
+                   45.0, low_open=True, unit="deg (a radar's horizontal beam, -3 dB)")
+    resolution = number(d, "range_resolution", key, default.range_resolution, 0.0, 1000.0,
+                        low_open=True, unit="m (a radar's range bin)")
+    nearest, farthest = _ranges(d, key, default.min_range, default.max_range)
+    if farthest / resolution > MAX_BINS:
+        raise ScenarioError(f"{key}.range_resolution", resolution, f"must be at least "
+                            f"max_range / {MAX_BINS} ({farthest / MAX_BINS:g} m)")
+    detection = number(d, "detection_range", key, default.detection_range, 0.0, 1e6,
+                       low_open=True, unit="m (a radar's: where a target's echo falls to the "
+                       "detection threshold)")
+    clutter = number(d, "sea_clutter", key, default.sea_clutter, 0.0, 1000.0,
+                     unit="(a radar's mean sea clutter power at 100 m in a sea of 1 m "
+                     "significant height, relative to the detection threshold; 0: none)")
+    return RadarSpec(name, rate, position, rpm, spokes, math.radians(width), resolution,
+                     nearest, farthest, detection, clutter)
 
 
 _TRIAD_KEYS = ("noise_density", "random_walk", "bias_instability", "bias_correlation_time")

@@ -1,6 +1,7 @@
 """Sensor models of the core (pure numpy): what sensors on a boat read.
 
-An IMU, a GNSS receiver, a noisy odometry, a magnetometer and a depth sounder.
+An IMU, a GNSS receiver, a noisy odometry, a magnetometer, a depth sounder, a lidar, an AIS
+receiver and a radar.
 
 Each sensor is a frozen spec, a frozen noise state and a function ``measure_*(spec, key,
 state, truth...) -> (reading, state)``; the noise is drawn from the scenario seed by sample
@@ -53,6 +54,7 @@ from boat_dynamics.physics.sensors.odometry import (
     dead_reckon,
     measure_odometry,
 )
+from boat_dynamics.physics.sensors.radar import RadarScan, RadarSpec, measure_radar
 
 __all__ = [
     "AisReport",
@@ -78,6 +80,8 @@ __all__ = [
     "OdometryNoise",
     "OdometryReading",
     "OdometrySpec",
+    "RadarScan",
+    "RadarSpec",
     "SensorSpec",
     "ais_reports", "dead_reckon",
     "dropped",
@@ -93,6 +97,7 @@ __all__ = [
     "measure_lidar",
     "measure_magnetometer",
     "measure_odometry",
+    "measure_radar",
     "slant_range",
     "stream_key",
     "true_motion",
@@ -100,4 +105,4 @@ __all__ = [
 
 #: A sensor of a boat's ``sensors`` list.
 SensorSpec = (ImuSpec | GnssSpec | OdometrySpec | MagnetometerSpec | DepthSounderSpec
-              | LidarSpec | AisSpec)
+              | LidarSpec | AisSpec | RadarSpec)
