@@ -72,6 +72,7 @@ __all__ = [
     "noisy_odometry",
     "odometry",
     "pose_stamped",
+    "radar_cloud",
     "seconds_to_time",
     "tf_message",
     "time_to_seconds",
@@ -288,6 +289,28 @@ def lidar_points(stamp: Time, frame: str, directions: np.ndarray, ranges: np.nda
                        fields=_XYZ, is_bigendian=False, point_step=12,
                        row_step=12 * points.shape[0], is_dense=True,
                        data=array.array("B", points.tobytes()))
+
+
+_XYZI = [PointField(name=n, offset=4 * k, datatype=PointField.FLOAT32, count=1)
+         for k, n in enumerate(("x", "y", "z", "intensity"))]
+
+
+def radar_cloud(stamp: Time, frame: str, points: np.ndarray, intensity: np.ndarray
+                ) -> PointCloud2:
+    """sensor_msgs/PointCloud2 (x, y, z, intensity float32) of a radar's detections.
+
+    Args:
+        stamp: when the spokes were taken.
+        frame: the sensor's frame.
+        points: (P, 3) m, sensor frame (:func:`boat_dynamics.physics.sensors.radar.
+            radar_points`).
+        intensity: (P,) the echo power relative to the detection threshold (linear, >= 1).
+    """
+    data = np.column_stack([points, intensity]).astype(np.float32)
+    return PointCloud2(header=_header(stamp, frame), height=1, width=data.shape[0],
+                       fields=_XYZI, is_bigendian=False, point_step=16,
+                       row_step=16 * data.shape[0], is_dense=True,
+                       data=array.array("B", data.tobytes()))
 
 
 def nav_sat_fix(stamp: Time, frame: str, reading: GnssReading, fix: bool = True) -> NavSatFix:

@@ -80,10 +80,12 @@ def test_two_boats_that_meet_report_each_other(boatsim, tmp_path):
     assert min(gap) > 3.8
 
 
-def test_a_lidar_sees_the_pier_and_a_scanner_the_other_boat(boatsim, tmp_path):
+def test_a_lidar_sees_the_pier_and_a_scanner_and_a_radar_the_other_boat(boatsim, tmp_path):
     # A 3-D lidar (4 rings) and a 2-D scanner 0.3 m above the hull's middle of a boat at
     # rest (its deck is at 0.5 m), its bow 6 m from the pier's face (x = 8): the scanner's
     # ray ahead reads 8 m; another boat 10 m to port, its side 9 m away, is its ray to port.
+    # A radar turning once a second (1 deg spokes, 0.5 m bins) at (0.25, 0.25): the pier
+    # ahead at 7.75 m, the other boat to port at 8.75 m, each in the middle of its bin.
     path, bag = tmp_path / "lidar.yaml", tmp_path / "bag"
     path.write_text(yaml.safe_dump({
         "simulation": {"duration": 1.0}, "ocean": {},
@@ -92,11 +94,14 @@ def test_a_lidar_sees_the_pier_and_a_scanner_the_other_boat(boatsim, tmp_path):
                       {"type": "lidar", "name": "scanner", "samples": 4,
                        "position": [0.0, 0.0, 0.3], "noise": {"range_sigma": 0.0}},
                       {"type": "lidar", "name": "lidar", "samples": 90, "rings": 4,
-                       "vertical_fov_deg": 10.0, "position": [0.0, 0.0, 0.3]}]},
+                       "vertical_fov_deg": 10.0, "position": [0.0, 0.0, 0.3]},
+                      {"type": "radar", "rpm": 60.0, "spokes": 360, "range_resolution": 0.5,
+                       "min_range": 2.0, "max_range": 50.0, "sea_clutter": 0.0,
+                       "position": [0.25, 0.25, 1.0]}]},
                   {"name": "b", "initial_pose": {"position": [0.0, 10.0, 0.0]}}]}))
     sim = boatsim("run", str(path), "--fast", "--record", str(bag))
     assert sim.wait(timeout=120) == 0, sim.output()
-    msgs = read_bag(bag, ["/a/scanner/scan", "/a/lidar/points"])
+    msgs = read_bag(bag, ["/a/scanner/scan", "/a/lidar/points", "/a/radar/points"])
     scans = [m for _, m in msgs["/a/scanner/scan"]]
     assert len(scans) == 10  # 10 Hz over 1 s (a reading needs a step before it)
     scan = scans[-1]
@@ -111,3 +116,15 @@ def test_a_lidar_sees_the_pier_and_a_scanner_the_other_boat(boatsim, tmp_path):
     points = np.frombuffer(bytes(cloud.data), dtype=np.float32).reshape(-1, 3)
     ahead = points[np.abs(points[:, 1]) < 0.5]
     assert np.all(np.abs(ahead[:, 0] - 8.0) < 0.3)  # the pier's face, ahead
+    # the radar: a revolution in 10 messages of 36 spokes, in its frame (x, y, z, intensity)
+    clouds = [m for _, m in msgs["/a/radar/points"]]
+    assert len(clouds) == 10 and clouds[0].header.frame_id == "a/radar_link"
+    assert [f.name for f in clouds[0].fields] == ["x", "y", "z", "intensity"]
+    radar = np.concatenate([np.frombuffer(bytes(c.data), dtype=np.float32).reshape(-1, 4)
+                            for c in clouds])
+    assert np.all(radar[:, 3] >= 1.0)
+    ahead = radar[(np.abs(radar[:, 1]) < 0.2) & (radar[:, 0] > 0.0)]
+    assert len(ahead) and np.all(np.abs(ahead[:, 0] - 7.75) < 0.1), ahead
+    port = radar[(np.abs(radar[:, 0]) < 0.2) & (radar[:, 1] > 0.0)]
+    assert len(port) and np.all(np.abs(port[:, 1] - 8.75) < 0.1), port
+    assert not np.any((radar[:, 0] < -1.0) & (np.abs(radar[:, 1]) < 5.0))  # open water aft

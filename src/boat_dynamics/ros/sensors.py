@@ -37,6 +37,7 @@ from boat_dynamics.physics.sensors import (
     LidarSpec,
     MagnetometerSpec,
     OdometrySpec,
+    RadarSpec,
     SensorSpec,
     ais_reports,
     dead_reckon,
@@ -51,10 +52,12 @@ from boat_dynamics.physics.sensors import (
     measure_lidar,
     measure_magnetometer,
     measure_odometry,
+    measure_radar,
     stream_key,
     true_motion,
 )
 from boat_dynamics.physics.sensors.lidar import lidar_directions
+from boat_dynamics.physics.sensors.radar import radar_points, significant_height, spokes_due
 from boat_dynamics.physics.world.footprints import Footprints
 from boat_dynamics.physics.world.obstacles import World, floor_depth
 from boat_msgs_py import names
@@ -70,6 +73,7 @@ from boat_msgs_py.convert import (
     magnetic_field,
     nav_sat_fix,
     noisy_odometry,
+    radar_cloud,
     tf_message,
 )
 from boat_msgs_py.qos import SENSOR_QOS, TF_QOS, TF_STATIC_QOS
@@ -296,10 +300,12 @@ class SensorPublisher:
                 self._magnetometer(sensor, stamp, now[index], send)
             elif isinstance(sensor.spec, DepthSounderSpec):
                 self._depth(sensor, stamp, center_of_mass[index], now[index], depth, send)
-            elif isinstance(sensor.spec, LidarSpec | AisSpec):
+            elif isinstance(sensor.spec, LidarSpec | AisSpec | RadarSpec):
                 fleet = fleet or _fleet_frames(center_of_mass, after)
                 if isinstance(sensor.spec, LidarSpec):
                     self._lidar(sensor, stamp, index, fleet, after, sea, send)
+                elif isinstance(sensor.spec, RadarSpec):
+                    self._radar(sensor, stamp, index, fleet, after, sea, send)
                 else:
                     self._ais(sensor, stamp, index, fleet, center_of_mass, after, send)
             else:
@@ -384,6 +390,27 @@ class SensorPublisher:
             self._send(sensor, 0, laser_scan(stamp, sensor.frame, spec, ranges)
                        if spec.rings == 1 else
                        lidar_points(stamp, sensor.frame, lidar_directions(spec), ranges))
+
+    def _radar(self, sensor: _Sensor, stamp, index: int,
+               fleet: tuple[np.ndarray, np.ndarray], after: FleetState,
+               sea: WaveField | None, send: bool) -> None:
+        """A radar's spokes swept since its last message (none: no message).
+
+        Its state is the next spoke's index; ``fleet`` as for :meth:`_lidar`.
+        """
+        rot, ref = fleet
+        first, count = spokes_due(sensor.spec, sensor.state, float(after.t))
+        if count == 0:
+            return
+        hulls = None if self._footprints is None else (self._footprints, rot, ref)
+        height = (0.0 if sea is None else
+                  significant_height(np.array([c.amplitude for c in sea.components])))
+        scan = measure_radar(sensor.spec, sensor.key, first, count, rot[index], ref[index],
+                             self._world, hulls, height, own=index)
+        sensor.state = first + count
+        if send:
+            self._send(sensor, 0, radar_cloud(stamp, sensor.frame,
+                                              radar_points(scan, rot[index]), scan.intensity))
 
     def _odometry(self, sensor: _Sensor, stamp, com: np.ndarray, after: BoatState,
                   send: bool) -> None:
@@ -481,6 +508,9 @@ def _sensor_publishers(node: Node, boat: str, spec: SensorSpec, tap: Tap | None
                                 SENSOR_QOS, tap)]
     if isinstance(spec, AisSpec):
         return [TappedPublisher(node, AisReportMsg, names.ais_topic(boat, spec.name),
+                                SENSOR_QOS, tap)]
+    if isinstance(spec, RadarSpec):
+        return [TappedPublisher(node, PointCloud2, names.points_topic(boat, spec.name),
                                 SENSOR_QOS, tap)]
     if isinstance(spec, LidarSpec):
         return [TappedPublisher(node, LaserScan, names.scan_topic(boat, spec.name), SENSOR_QOS,
