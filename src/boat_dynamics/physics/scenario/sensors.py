@@ -37,6 +37,7 @@ from boat_dynamics.physics.sensors import (
     OdometrySpec,
     SensorSpec,
 )
+from boat_dynamics.physics.sensors.gnss import Multipath
 from boat_dynamics.physics.sensors.imu import ACCELEROMETER, GYROSCOPE
 from boat_dynamics.physics.sensors.lidar import SEA_RETURNS
 from boat_dynamics.physics.sensors.radar import RadarSpec
@@ -139,7 +140,7 @@ _TYPE_KEYS = {"outages": ("gnss",), "drift": ("odometry",), "heading_baseline": 
               "clutter_probability": ("lidar",), "range": ("ais",), "rpm": ("radar",),
               "spokes": ("radar",), "beamwidth_deg": ("radar",),
               "range_resolution": ("radar",), "detection_range": ("radar",),
-              "sea_clutter": ("radar",)}
+              "sea_clutter": ("radar",), "multipath": ("gnss",)}
 
 
 def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
@@ -188,7 +189,8 @@ def _sensor(d: Mapping[str, Any], k: str, kind: str, name: str,
     elif kind == "gnss":
         spec = GnssSpec(name, rate, position, _gnss_noise(noise, f"{k}.noise"),
                         _outages(d.get("outages"), f"{k}.outages"),
-                        heading_baseline=_baseline(d, k))
+                        heading_baseline=_baseline(d, k),
+                        multipath=_multipath(d.get("multipath"), f"{k}.multipath"))
     else:
         if "position" in d:
             raise ScenarioError(f"{k}.position", d["position"],
@@ -412,6 +414,24 @@ def _outages(raw: Any, key: str) -> tuple[tuple[float, float], ...]:
                                 "< end (end may be .inf)")
         out.append((float(pair[0]), float(pair[1])))
     return tuple(out)
+
+
+def _multipath(raw: Any, key: str) -> Multipath | None:
+    """A receiver's multipath jumps: ``{rate_hz, sigma, duration}`` (Hz, m, s), or None."""
+    describe(key, None, "gnss: {rate_hz, sigma, duration}: horizontal jumps of the fix",
+             default_doc="none: no jumps")
+    if raw is None:
+        return None
+    d = mapping(raw, key)
+    only(d, key, ("rate_hz", "sigma", "duration"))
+    default = Multipath()
+    return Multipath(
+        number(d, "rate_hz", key, default.rate_hz, 0.0, 100.0,
+               unit="Hz (jumps a second while none is under way)"),
+        number(d, "sigma", key, default.sigma, 0.0, 1e4,
+               unit="m (a jump's east and north offsets, 1 sigma)"),
+        number(d, "duration", key, default.duration, 0.0, 1e6, low_open=True,
+               unit="s (a jump's mean duration, exponentially distributed)"))
 
 
 def _baseline(d: Mapping[str, Any], key: str) -> np.ndarray | None:

@@ -20,6 +20,20 @@ Outages (``outages``: intervals of simulation time: under a bridge, beside a qua
 receiver has no fix (:func:`has_fix`); its noise runs on, so the fixes after an outage are
 those it would have had.
 
+Multipath jumps (``multipath``: :class:`Multipath`; none by default): near a quay wall, a
+hull or a bridge a receiver tracks a reflected signal (or only the reflection, NLOS) and its
+fix jumps by metres to tens of metres for seconds, then comes back (Groves, "Principles of
+GNSS, Inertial, and Multisensor Integrated Navigation Systems", 2nd ed. 2013, sec. 10.4).
+Here a jump starts at each fix with probability 1 - exp(-rate dt) while none is under way (a
+Poisson process of ``rate_hz`` in the time without one), moves the fix east and north by
+N(0, ``sigma``^2) each, and lasts an exponential time of mean ``duration`` (the fixes while
+the time left is > 0; a new one may start at the fix the last one ends). The receiver does
+not know: the fix keeps its status and its covariance, as a real receiver's (its error
+estimate comes from the signals' strength and geometry, which a reflection does not
+change) -- this is what makes multipath hard for a filter, which must find the jump from
+the innovations. The draws are apart from the fix's (:data:`MULTIPATH_SAMPLES`), so a
+receiver without jumps reads as before, and one with them has the same white noise.
+
 Heading (a dual-antenna receiver, ``heading_baseline`` b: body frame, from this antenna to
 the second one): the receiver measures the baseline's direction in the world, w = R b, and
 gives the boat's yaw (ENU, counter-clockwise from east) as the baseline's minus its mounting
@@ -42,12 +56,14 @@ import pymap3d
 from boat_dynamics.physics.body.rigid_body import rotation_matrix
 from boat_dynamics.physics.sensors.noise import gauss_markov, standard_normal
 
-__all__ = ["HEADING_SAMPLES", "Datum", "GnssNoise", "GnssReading", "GnssSpec", "GnssState",
-           "enu_to_geodetic", "geodetic_to_enu", "gnss_start", "has_fix", "measure_gnss",
-           "measure_heading"]
+__all__ = ["HEADING_SAMPLES", "MULTIPATH_SAMPLES", "Datum", "GnssNoise", "GnssReading",
+           "GnssSpec", "GnssState", "Multipath", "enu_to_geodetic", "geodetic_to_enu",
+           "gnss_start", "has_fix", "measure_gnss", "measure_heading", "multipath_jump"]
 
 #: Where a stream's heading draws start: past every fix's own counter, before the dropouts'.
 HEADING_SAMPLES = 2**60
+#: Where a stream's multipath draws start: past the headings', before the dropouts'.
+MULTIPATH_SAMPLES = 2**60 + 2**59
 #: The shortest horizontal part of a heading baseline, as a fraction of its length.
 MIN_HORIZONTAL = 0.1
 
@@ -80,6 +96,21 @@ class GnssNoise:
 
 
 @dataclass(frozen=True)
+class Multipath:
+    """A receiver's multipath jumps.
+
+    Attributes:
+        rate_hz: jumps a second while none is under way.
+        sigma: m, a jump's east and north offsets, 1 sigma each.
+        duration: s, a jump's mean duration (exponentially distributed).
+    """
+
+    rate_hz: float = 0.01
+    sigma: float = 5.0
+    duration: float = 10.0
+
+
+@dataclass(frozen=True)
 class GnssSpec:
     """A GNSS receiver on a boat.
 
@@ -94,6 +125,7 @@ class GnssSpec:
         latency: s, from a fix (its stamp) to its publication (and its velocity's).
         heading_baseline: (3,) m, body frame, from this antenna to a second one (a
             dual-antenna receiver's heading), or None: no heading.
+        multipath: its jumps, or None: none.
     """
 
     name: str = "gnss"
@@ -104,14 +136,21 @@ class GnssSpec:
     dropout: float = 0.0
     latency: float = 0.0
     heading_baseline: np.ndarray | None = None
+    multipath: Multipath | None = None
 
 
 @dataclass(frozen=True)
 class GnssState:
-    """After ``sample`` fixes: the correlated error (3,) m, ENU."""
+    """After ``sample`` fixes: the correlated error (3,) m, ENU; the multipath jump.
+
+    ``jump``: (2,) m, east and north, the jump under way (zeros: none); ``jump_left``: s it
+    has left after the last fix (<= 0: none under way).
+    """
 
     sample: int
     bias: np.ndarray
+    jump: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    jump_left: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -171,13 +210,39 @@ def measure_gnss(spec: GnssSpec, key: np.ndarray, state: GnssState, datum: Datum
     bias = gauss_markov(state.bias, _bias_sigma(n), n.bias_correlation_time,
                         1.0 / spec.rate_hz, w[0])
     white = np.array([n.horizontal_sigma, n.horizontal_sigma, n.vertical_sigma])
-    lat, lon, alt = enu_to_geodetic(datum, antenna + bias + white * w[1])
+    jump, left = multipath_jump(spec, key, state)
+    error = bias + white * w[1] + np.array([jump[0], jump[1], 0.0])
+    lat, lon, alt = enu_to_geodetic(datum, antenna + error)
     return GnssReading(
         latitude=lat, longitude=lon, altitude=alt,
-        position_covariance=np.diag(white ** 2 + _bias_sigma(n) ** 2),
+        position_covariance=np.diag(white ** 2 + _bias_sigma(n) ** 2),  # jumps untold
         velocity=velocity + n.velocity_sigma * w[2],
         velocity_covariance=np.eye(3) * n.velocity_sigma ** 2,
-    ), GnssState(state.sample + 1, bias)
+    ), GnssState(state.sample + 1, bias, jump, left)
+
+
+def multipath_jump(spec: GnssSpec, key: np.ndarray, state: GnssState
+                   ) -> tuple[np.ndarray, float]:
+    """The jump on fix number ``state.sample``: ((2,) m east, north; s it has left after).
+
+    The one under way goes on while its time left, less the fix interval, is > 0; else a new
+    one starts with probability 1 - exp(-rate_hz dt) (draws at :data:`MULTIPATH_SAMPLES` +
+    the fix's index: a uniform to start, a uniform for its duration, two normals).
+    """
+    m = spec.multipath
+    if m is None:
+        return np.zeros(2), 0.0
+    dt = 1.0 / spec.rate_hz
+    left = (state.jump_left or 0.0) - dt  # None: a snapshot from before jumps existed
+    if left > 0.0 and state.jump is not None:
+        return state.jump, left
+    counter = np.array([0, MULTIPATH_SAMPLES + state.sample, 0, 0], dtype=np.uint64)
+    g = np.random.Generator(np.random.Philox(key=key, counter=counter))
+    u = g.random(2)
+    offset = m.sigma * g.standard_normal(2)
+    if u[0] >= -math.expm1(-m.rate_hz * dt):
+        return np.zeros(2), 0.0
+    return offset, -m.duration * math.log1p(-u[1])
 
 
 def measure_heading(spec: GnssSpec, key: np.ndarray, sample: int,

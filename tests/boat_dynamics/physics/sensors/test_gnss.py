@@ -148,3 +148,91 @@ def test_heading_noise_has_its_sigma_and_leaves_the_fixes_as_they_were():
         fb, b = measure_gnss(plain, key, b, Datum(), np.zeros(3), np.zeros(3))
         assert (fa.latitude, fa.longitude, fa.altitude) == (fb.latitude, fb.longitude,
                                                             fb.altitude)
+
+
+def _jumps(spec, n):
+    """(starts, fixes in a jump per jump, offsets (S, 2), durations (S,)) over ``n`` fixes."""
+    from boat_dynamics.physics.sensors.gnss import GnssState, multipath_jump
+
+    key = stream_key(5, "boat", "gnss")
+    state = GnssState(1, np.zeros(3))
+    offsets, durations, lengths = [], [], []
+    for k in range(1, n + 1):
+        jump, left = multipath_jump(spec, key, GnssState(k, state.bias, state.jump,
+                                                         state.jump_left))
+        if left > 0.0 and state.jump_left - 1.0 / spec.rate_hz <= 0.0:  # a new one
+            offsets.append(jump)
+            durations.append(left)
+            lengths.append(0)
+        if left > 0.0:
+            lengths[-1] += 1
+        state = GnssState(k + 1, state.bias, jump, left)
+    return len(offsets), np.array(lengths[:-1]), np.array(offsets), np.array(durations)
+
+
+def test_multipath_jumps_come_at_their_rate_last_their_duration_and_are_their_size():
+    # 1 Hz fixes, 0.1 jump/s while none, 5 s each, 8 m: 30,000 fixes. Per fix a jump starts
+    # with p = 1 - exp(-0.1) when none is under way, and covers ceil(D / 1 s) fixes, D
+    # exponential of mean 5 s: E[fixes] = 1 / (1 - exp(-1/5)); between two, (1 - p) / p
+    # fixes without. The count's variance is below a Poisson count's (the cycle's squared
+    # coefficient of variation is 0.55): 4 sqrt(expected) is over 4 sigma.
+    from boat_dynamics.physics.sensors.gnss import Multipath
+
+    spec = GnssSpec(rate_hz=1.0, multipath=Multipath(rate_hz=0.1, sigma=8.0, duration=5.0))
+    n = 30_000
+    count, lengths, offsets, durations = _jumps(spec, n)
+    p, covered = -math.expm1(-0.1), 1.0 / -math.expm1(-0.2)
+    expected = n / (covered + (1 - p) / p)
+    assert abs(count - expected) < 4 * math.sqrt(expected), (count, expected)
+    # fixes a jump: geometric of variance q / (1 - q)^2, q = exp(-0.2)
+    sd = math.sqrt(math.exp(-0.2)) / -math.expm1(-0.2)
+    assert abs(lengths.mean() - covered) < 4 * sd / math.sqrt(len(lengths))
+    assert abs(durations.mean() - 5.0) < 4 * 5.0 / math.sqrt(count)  # exponential
+    # east and north N(0, 8^2): the sample sigma within 4 of its sigma / sqrt(2 n)
+    assert abs(offsets.std() - 8.0) < 4 * 8.0 / math.sqrt(2 * offsets.size)
+    assert np.all(np.abs(offsets.mean(axis=0)) < 4 * 8.0 / math.sqrt(count))
+    # without multipath, or at rate 0: never
+    assert _jumps(GnssSpec(rate_hz=1.0), 200)[0] == 0
+    assert _jumps(GnssSpec(rate_hz=1.0, multipath=Multipath(rate_hz=0.0)), 200)[0] == 0
+
+
+def test_a_jump_moves_the_fix_the_receiver_does_not_know_and_its_noise_is_the_same():
+    from boat_dynamics.physics.sensors.gnss import Multipath
+
+    datum, key = Datum(), stream_key(2, "boat", "gnss")
+    plain = GnssSpec(rate_hz=5.0)
+    jumpy = GnssSpec(rate_hz=5.0, multipath=Multipath(rate_hz=100.0, sigma=10.0,
+                                                      duration=0.5))
+    a, b = gnss_start(plain, key), gnss_start(jumpy, key)
+    moved = []
+    for _ in range(6):
+        ra, a = measure_gnss(plain, key, a, datum, np.zeros(3), np.zeros(3))
+        rb, b = measure_gnss(jumpy, key, b, datum, np.zeros(3), np.zeros(3))
+        d = (geodetic_to_enu(datum, rb.latitude, rb.longitude, rb.altitude)
+             - geodetic_to_enu(datum, ra.latitude, ra.longitude, ra.altitude))
+        np.testing.assert_allclose(d, [*b.jump, 0.0], atol=1e-6)  # the jump, nothing else
+        np.testing.assert_array_equal(rb.position_covariance, ra.position_covariance)
+        np.testing.assert_array_equal(rb.velocity, ra.velocity)
+        moved.append(b.jump.copy())
+    assert np.linalg.norm(moved[0]) > 0.1  # p = 1 - exp(-20): it jumps at once
+    # 0.5 s at 5 Hz: a jump covers ceil(D / 0.2 s) fixes, then another starts at once
+    assert any(not np.array_equal(moved[k], moved[k + 1]) for k in range(5))
+
+
+def test_a_scenarios_multipath_is_read_and_bad_values_refused():
+    from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+    from boat_dynamics.physics.sensors.gnss import Multipath
+
+    def gnss(**keys):
+        return parse_scenario({"boats": [{"sensors": [{"type": "gnss", **keys}]}]}
+                              ).boats[0].sensors[0]
+
+    assert gnss().multipath is None
+    assert gnss(multipath={"sigma": 20}).multipath == Multipath(0.01, 20.0, 10.0)
+    for bad, key in (({"rate_hz": -1}, "rate_hz"), ({"sigma": "big"}, "sigma"),
+                     ({"duration": 0}, "duration"), ({"size": 3}, "size")):
+        with pytest.raises(ScenarioError) as err:
+            gnss(multipath=bad)
+        assert err.value.key == f"boats[0].sensors[0].multipath.{key}"
+    with pytest.raises(ScenarioError, match="only for a gnss"):
+        parse_scenario({"boats": [{"sensors": [{"type": "imu", "multipath": {}}]}]})
