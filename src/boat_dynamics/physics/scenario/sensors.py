@@ -297,7 +297,8 @@ def _radar(name: str, rate: float, position: np.ndarray, d: Mapping[str, Any],
                        "detection threshold)")
     clutter = number(d, "sea_clutter", key, default.sea_clutter, 0.0, 1000.0,
                      unit="(a radar's mean sea clutter power at 100 m in a sea of 1 m "
-                     "significant height, relative to the detection threshold; 0: none)")
+                     "significant height, relative to the detection threshold, for 12 m bins "
+                     "and a 3.9 deg beam: it scales with the cell's area; 0: none)")
     return RadarSpec(name, rate, position, rpm, spokes, math.radians(width), resolution,
                      nearest, farthest, detection, clutter)
 

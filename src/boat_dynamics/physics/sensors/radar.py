@@ -22,8 +22,9 @@ display), each in its range bin floor(R / ``range_resolution``): a bin holds its
 
 Sea clutter: each bin of each spoke adds an exponentially distributed power (Rayleigh
 amplitude, the classical model; Ward, Tough and Watts, "Sea Clutter", 2nd ed. 2013, ch. 2)
-of mean c(R) = ``sea_clutter`` (H_s / 1 m) (100 m / R)^3 min(1, R_c / R)^4: the clutter
-area grows as R while the echo falls as R^-4 (power as R^-3) inside the critical range
+of mean c(R) = ``sea_clutter`` (H_s / 1 m) (A / A_0) (100 m / R)^3 min(1, R_c / R)^4: the
+clutter cell's area A = R ``beamwidth`` ``range_resolution`` (A_0 the defaults' at 100 m: 3.9
+deg, 12 m) grows as R while the echo falls as R^-4 (power as R^-3) inside the critical range
 R_c = 4 pi h (H_s / 4) / lambda, and the reflectivity falls as the grazing angle^4 beyond it
 (power as R^-7; Skolnik 2001, sec. 7.5; Skolnik, "Radar Handbook", 3rd ed. 2008, ch. 15),
 with h the antenna's height above the mean sea, H_s the sea's significant height
@@ -57,6 +58,9 @@ WAVELENGTH = 0.032
 #: m, the range and significant height the clutter level ``sea_clutter`` is given at.
 CLUTTER_RANGE = 100.0
 CLUTTER_HEIGHT = 1.0
+#: m, rad: the range bin and beamwidth (the clutter cell) ``sea_clutter`` is given for.
+CLUTTER_BIN = 12.0
+CLUTTER_BEAM = math.radians(3.9)
 
 
 @dataclass(frozen=True)
@@ -75,7 +79,8 @@ class RadarSpec:
         max_range: m: bins whose centre is farther are not reported.
         detection_range: m, where a target's echo falls to the detection threshold.
         sea_clutter: the mean clutter power at 100 m in a sea of 1 m significant height,
-            relative to the threshold (0: none).
+            relative to the threshold, for a 12 m bin and a 3.9 deg beam (it scales with
+            the cell's area; 0: none).
         dropout: the probability that a message is lost.
         latency: s from a message's spokes to its publication.
     """
@@ -142,7 +147,7 @@ def clutter_mean(spec: RadarSpec, ranges: np.ndarray, height: float,
     """(n,) the mean clutter power at ``ranges`` (m), relative to the threshold.
 
     Args:
-        spec: the radar (``sea_clutter``).
+        spec: the radar (``sea_clutter``, its cell: ``range_resolution``, ``beamwidth``).
         ranges: (n,) m, > 0.
         height: m, the sea's significant height.
         antenna_height: m above the mean sea (at least 0.1 m is used).
@@ -150,7 +155,8 @@ def clutter_mean(spec: RadarSpec, ranges: np.ndarray, height: float,
     if spec.sea_clutter <= 0.0 or height <= 0.0:
         return np.zeros(len(ranges))
     critical = 4.0 * math.pi * max(antenna_height, 0.1) * 0.25 * height / WAVELENGTH
-    return (spec.sea_clutter * height / CLUTTER_HEIGHT * (CLUTTER_RANGE / ranges) ** 3
+    cell = spec.range_resolution / CLUTTER_BIN * spec.beamwidth / CLUTTER_BEAM
+    return (spec.sea_clutter * height / CLUTTER_HEIGHT * cell * (CLUTTER_RANGE / ranges) ** 3
             * np.minimum(1.0, critical / ranges) ** 4)
 
 

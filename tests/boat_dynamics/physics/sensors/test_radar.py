@@ -98,6 +98,9 @@ def test_the_sea_clutter_model_falls_as_r3_then_r7_past_the_critical_range():
     assert c[1] == pytest.approx(1.0) and c[0] / c[1] == pytest.approx(8.0)
     assert c[2] / c[3] == pytest.approx(2.0 ** 7)
     assert np.all(clutter_mean(spec, np.array([50.0]), 0.0, 3.0) == 0.0)  # flat sea
+    # a cell of half the bin and half the beam: a quarter of the clutter
+    small = RadarSpec(sea_clutter=1.0, range_resolution=6.0, beamwidth=math.radians(1.95))
+    assert clutter_mean(small, np.array([100.0]), 1.0, 3.0)[0] == pytest.approx(0.25)
 
 
 def test_clutter_detections_fall_with_range_as_the_model_says():
