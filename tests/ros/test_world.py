@@ -86,10 +86,13 @@ def test_a_lidar_sees_the_pier_and_a_scanner_and_a_radar_the_other_boat(boatsim,
     # ray ahead reads 8 m; another boat 10 m to port, its side 9 m away, is its ray to port.
     # A radar turning once a second (1 deg spokes, 0.5 m bins) at (0.25, 0.25): the pier
     # ahead at 7.75 m, the other boat to port at 8.75 m, each in the middle of its bin.
+    # A buoy (0.4 m round) 6 m to starboard: the scanner's ray that way reads 5.6 m; an AIS
+    # receiver hears the other boat and not the buoy; the buoy has its odom and its line's
+    # wrench/mooring, and no command topics.
     path, bag = tmp_path / "lidar.yaml", tmp_path / "bag"
     path.write_text(yaml.safe_dump({
         "simulation": {"duration": 1.0}, "ocean": {},
-        "world": {"obstacles": [PIER]},
+        "world": {"obstacles": [PIER], "buoys": [{"name": "buoy", "position": [0.0, -6.0]}]},
         "boats": [{"name": "a", "sensors": [
                       {"type": "lidar", "name": "scanner", "samples": 4,
                        "position": [0.0, 0.0, 0.3], "noise": {"range_sigma": 0.0}},
@@ -97,18 +100,21 @@ def test_a_lidar_sees_the_pier_and_a_scanner_and_a_radar_the_other_boat(boatsim,
                        "vertical_fov_deg": 10.0, "position": [0.0, 0.0, 0.3]},
                       {"type": "radar", "rpm": 60.0, "spokes": 360, "range_resolution": 0.5,
                        "min_range": 2.0, "max_range": 50.0, "sea_clutter": 0.0,
-                       "position": [0.25, 0.25, 1.0]}]},
+                       "position": [0.25, 0.25, 1.0]},
+                      {"type": "ais"}]},
                   {"name": "b", "initial_pose": {"position": [0.0, 10.0, 0.0]}}]}))
     sim = boatsim("run", str(path), "--fast", "--record", str(bag))
     assert sim.wait(timeout=120) == 0, sim.output()
-    msgs = read_bag(bag, ["/a/scanner/scan", "/a/lidar/points", "/a/radar/points"])
+    msgs = read_bag(bag, ["/a/scanner/scan", "/a/lidar/points", "/a/radar/points",
+                          "/a/ais/reports", "/buoy/odom", "/buoy/wrench/mooring"])
     scans = [m for _, m in msgs["/a/scanner/scan"]]
     assert len(scans) == 10  # 10 Hz over 1 s (a reading needs a step before it)
     scan = scans[-1]
     assert scan.header.frame_id == "a/scanner_link"
-    # azimuths -180, -90, 0, 90 deg: behind and to starboard open water; ahead the pier,
-    # to port the other boat's side (1 m off its middle); the boats ride a few cm
-    assert math.isinf(scan.ranges[0]) and math.isinf(scan.ranges[1])
+    # azimuths -180, -90, 0, 90 deg: behind open water, to starboard the buoy; ahead the
+    # pier, to port the other boat's side (1 m off its middle); the boats ride a few cm
+    assert math.isinf(scan.ranges[0])
+    assert scan.ranges[1] == pytest.approx(5.6, abs=0.05)
     assert scan.ranges[2] == pytest.approx(8.0, abs=0.05)
     assert scan.ranges[3] == pytest.approx(9.0, abs=0.05)
     cloud = msgs["/a/lidar/points"][-1][1]
@@ -128,3 +134,7 @@ def test_a_lidar_sees_the_pier_and_a_scanner_and_a_radar_the_other_boat(boatsim,
     port = radar[(np.abs(radar[:, 0]) < 0.2) & (radar[:, 1] > 0.0)]
     assert len(port) and np.all(np.abs(port[:, 1] - 8.75) < 0.1), port
     assert not np.any((radar[:, 0] < -1.0) & (np.abs(radar[:, 1]) < 5.0))  # open water aft
+    assert {m.name for _, m in msgs["/a/ais/reports"]} == {"b"}
+    assert msgs["/buoy/odom"] and msgs["/buoy/wrench/mooring"]
+    assert "a buoy moored by a 9.7 m line to an anchor at [0.0, -6.0, -10.0] m; no command " \
+        "topics" in sim.output(), sim.output()
