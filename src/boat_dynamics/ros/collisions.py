@@ -53,8 +53,7 @@ class CollisionEvents:
         #: the names an event's ``other`` index means: the obstacles', then the boats'
         self._others = [o.name for o in world.obstacles] + self._names
         count = len(boats)
-        self._last = Touches(np.full(count, -1, dtype=np.intp), np.zeros((count, 3)),
-                             np.zeros((count, 2)), np.zeros(count), np.zeros(count))
+        self._last = Touches.empty(count)
         self._queued: list[tuple[float, int, Collision]] = []
 
     def restart(self) -> None:
@@ -99,6 +98,6 @@ class CollisionEvents:
         msg.header.frame_id = names.WORLD_FRAME
         x, y, z = touch.point[i].tolist()
         msg.point = Point(x=x, y=y, z=z)
-        nx, ny = touch.normal[i].tolist()
-        msg.normal = Vector3(x=nx, y=ny, z=0.0)
+        nx, ny, nz = touch.normal[i].tolist()
+        msg.normal = Vector3(x=nx, y=ny, z=nz)
         return msg

@@ -10,6 +10,8 @@ buoyancy of trial poses from here.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from boat_dynamics.physics.body.wrench import Wrench
@@ -147,8 +149,7 @@ def touches_of(system: System, state: FleetState, contact: Contact, world: World
         plus another boat's index, whichever is deeper; -1 touching nothing.
     """
     b = system.count
-    out = Touches(np.full(b, -1, dtype=np.intp), np.zeros((b, 3)), np.zeros((b, 2)),
-                  np.zeros(b), np.zeros(b))
+    out = Touches.empty(b)
     k = _kinematics(system, state, contact)
     found = []
     if world.obstacles:
@@ -198,6 +199,8 @@ def _near_obstacles(world: World, system: System, k: BoatKinematics) -> np.ndarr
     """(N,) int, the boats whose footprint's circle reaches the obstacles' bounding box."""
     x0, x1, y0, y1, _ = world.bounds
     r, p = system.footprints.radius, k.reference
+    if math.isfinite(world.shelving):  # a shelving shore reaches out as far as a keel does
+        r = r + (r + np.maximum(-p[:, 2], 0.0)) / world.shelving
     return np.flatnonzero((p[:, 0] + r >= x0) & (p[:, 0] - r <= x1) & (p[:, 1] + r >= y0)
                           & (p[:, 1] - r <= y1))
 

@@ -37,11 +37,13 @@ from boat_dynamics.physics.body.wrench import sum_by_owner
 from boat_dynamics.physics.world.footprints import Footprints, near_pairs
 from boat_dynamics.physics.world.obstacles import ContactParams, World, penetration
 
-__all__ = ["SLIP", "BoatKinematics", "Touches", "collision_wrench", "hull_contact_wrench",
-           "hull_touches", "touches"]
+__all__ = ["FLOOR_SOFTNESS", "SLIP", "BoatKinematics", "Touches", "collision_wrench",
+           "hull_contact_wrench", "hull_touches", "touches"]
 
 #: m/s: below this sliding speed the friction force grows linearly (regularised Coulomb).
 SLIP = 0.05
+#: A shelving floor's contact frequency, as a share of ``contact.frequency_hz``.
+FLOOR_SOFTNESS = 0.25
 
 
 @dataclass(frozen=True)
@@ -51,7 +53,8 @@ class Touches:
     Attributes:
         other: (G,) int, the obstacle's index in ``world.obstacles`` (-1: touching none).
         point: (G, 3) m, world frame, the boat's deepest point inside it.
-        normal: (G, 2) the obstacle's outward normal there (world x, y).
+        normal: (G, 3) the obstacle's unit outward normal there, world frame (horizontal
+            from a wall, up and seaward from a shelving floor).
         depth: (G,) m, how deep it is.
         approach_speed: (G,) m/s, its speed into the obstacle (> 0 approaching).
     """
@@ -61,6 +64,12 @@ class Touches:
     normal: np.ndarray
     depth: np.ndarray
     approach_speed: np.ndarray
+
+    @classmethod
+    def empty(cls, count: int) -> Touches:
+        """``count`` boats touching nothing."""
+        return cls(np.full(count, -1, dtype=np.intp), np.zeros((count, 3)),
+                   np.zeros((count, 3)), np.zeros(count), np.zeros(count))
 
 
 @dataclass(frozen=True)
@@ -73,7 +82,7 @@ class _Inside:
     rotation: np.ndarray  # (C, 3, 3) their boats' body to world
     velocity: np.ndarray  # (C, 3) m/s, world
     depth: np.ndarray  # (C,) m
-    normal: np.ndarray  # (C, 2) outward, world x, y
+    normal: np.ndarray  # (C, 3) unit, outward, world frame
     which: np.ndarray  # (C,) int, the obstacle
 
 
@@ -106,9 +115,10 @@ def collision_wrench(world: World, points: np.ndarray, body: np.ndarray, owner: 
         return force, torque
     touching = np.bincount(c.who, minlength=count)
     share = mass[c.who] / touching[c.who]  # kg: each point's share of the boat
-    normal = np.zeros((c.depth.shape[0], 3))
-    normal[:, :2] = c.normal
-    world_force = _point_forces(world.contact, share, c.depth, normal, c.velocity)
+    # a shelving floor (its normal up) is softer: a sand or mud bottom, and a push under the
+    # hull's ends, whose pitch and heave the step must resolve
+    soft = np.where(c.normal[:, 2] > 0.0, FLOOR_SOFTNESS, 1.0)
+    world_force = _point_forces(world.contact, share, c.depth, c.normal, c.velocity, soft)
     body_force = np.einsum("eji,ej->ei", c.rotation, world_force)
     force = sum_by_owner(body_force, c.who, count)
     torque = sum_by_owner(np.cross(c.arm, body_force), c.who, count)
@@ -116,7 +126,8 @@ def collision_wrench(world: World, points: np.ndarray, body: np.ndarray, owner: 
 
 
 def _point_forces(params: ContactParams, share: np.ndarray, depth: np.ndarray,
-                  normal: np.ndarray, velocity: np.ndarray) -> np.ndarray:
+                  normal: np.ndarray, velocity: np.ndarray, soft: np.ndarray | float = 1.0
+                  ) -> np.ndarray:
     """(C, 3) N, world frame: the push on C points in contact (module docs).
 
     Args:
@@ -125,8 +136,9 @@ def _point_forces(params: ContactParams, share: np.ndarray, depth: np.ndarray,
         depth: (C,) m, how deep each is.
         normal: (C, 3) the unit outward normals, world frame.
         velocity: (C, 3) m/s, their velocities relative to what they are in, world frame.
+        soft: (C,) or a number, each contact's frequency as a share of the contact's.
     """
-    omega = 2.0 * math.pi * params.frequency_hz
+    omega = 2.0 * math.pi * params.frequency_hz * soft
     v_n = np.einsum("ek,ek->e", normal, velocity)
     f_n = np.maximum(0.0, share * omega * (omega * depth - 2.0 * params.damping_ratio * v_n))
     slide = velocity - v_n[:, None] * normal
@@ -139,8 +151,7 @@ def touches(world: World, points: np.ndarray, body: np.ndarray, owner: np.ndarra
             count: int, rotation: np.ndarray, center_of_mass: np.ndarray,
             velocity: np.ndarray, angular_velocity: np.ndarray) -> Touches:
     """Each boat's deepest point in an obstacle: arguments as :func:`collision_wrench`'s."""
-    out = Touches(np.full(count, -1, dtype=np.intp), np.zeros((count, 3)),
-                  np.zeros((count, 2)), np.zeros(count), np.zeros(count))
+    out = Touches.empty(count)
     c = _inside(world, points, body, owner, rotation, center_of_mass, velocity,
                 angular_velocity)
     if c is None:
@@ -152,7 +163,7 @@ def touches(world: World, points: np.ndarray, body: np.ndarray, owner: np.ndarra
     out.point[b] = c.points[first]
     out.normal[b] = c.normal[first]
     out.depth[b] = c.depth[first]
-    out.approach_speed[b] = -np.einsum("ek,ek->e", c.normal[first], c.velocity[first, :2])
+    out.approach_speed[b] = -np.einsum("ek,ek->e", c.normal[first], c.velocity[first])
     return out
 
 
@@ -176,12 +187,17 @@ def _inside(world: World, points: np.ndarray, body: np.ndarray, owner: np.ndarra
 
 
 def _near(world: World, points: np.ndarray) -> np.ndarray:
-    """(E,) bool: the points within the obstacles' bounding box (the only ones that can touch)."""
+    """(E,) bool: the points within the obstacles' bounding box (the only ones that can touch).
+
+    The box reaches out past a shelving shore as far as its floor is as deep as the point.
+    """
     if not world.obstacles:
         return np.zeros(points.shape[0], dtype=bool)
     x0, x1, y0, y1, top = world.bounds
-    return ((points[:, 0] >= x0) & (points[:, 0] <= x1) & (points[:, 1] >= y0)
-            & (points[:, 1] <= y1) & (points[:, 2] <= top))
+    reach = np.maximum(-points[:, 2], 0.0) / world.shelving  # 0 without a shelving shore
+    return ((points[:, 0] >= x0 - reach) & (points[:, 0] <= x1 + reach)
+            & (points[:, 1] >= y0 - reach) & (points[:, 1] <= y1 + reach)
+            & (points[:, 2] <= top))
 
 
 @dataclass(frozen=True)
@@ -257,14 +273,13 @@ def hull_contact_wrench(params: ContactParams, footprints: Footprints, boats: Bo
 def hull_touches(footprints: Footprints, boats: BoatKinematics) -> Touches:
     """Each boat's deepest point in another boat's hull; ``other`` is that boat's index."""
     count = boats.mass.shape[0]
-    out = Touches(np.full(count, -1, dtype=np.intp), np.zeros((count, 3)),
-                  np.zeros((count, 2)), np.zeros(count), np.zeros(count))
+    out = Touches.empty(count)
     for o in _overlaps(footprints, boats):
         k = int(np.argmax(o.depth))
         for boat, other, sign in ((o.a, o.b, 1.0), (o.b, o.a, -1.0)):
             if o.depth[k] > out.depth[boat]:
                 out.other[boat], out.point[boat] = other, o.points[k]
-                out.normal[boat] = sign * o.normal[k, :2]
+                out.normal[boat] = sign * o.normal[k]
                 out.depth[boat] = o.depth[k]
                 out.approach_speed[boat] = -float(o.normal[k] @ o.velocity[k])
     return out

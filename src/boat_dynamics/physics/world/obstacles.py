@@ -146,6 +146,11 @@ class World:
     contact: ContactParams | None = None
 
     @cached_property
+    def shelving(self) -> float:
+        """The gentlest shore's slope (rise / run; inf: no shore shelves; computed once)."""
+        return min((o.slope for o in self.obstacles if isinstance(o, Prism)), default=math.inf)
+
+    @cached_property
     def bounds(self) -> np.ndarray:
         """(5,) m: x min, x max, y min, y max, the highest top (NaNs with no obstacles; once)."""
         if not self.obstacles:
@@ -180,22 +185,53 @@ def penetration(world: World, xy: np.ndarray, z: np.ndarray, velocity: np.ndarra
         velocity: (N, 2) m/s, their horizontal world velocities (a point on a cylinder's
             axis leaves against its motion).
 
+    A prism of finite ``slope`` s also has its shelving floor, z = -s r at a distance r from
+    its edge (:func:`floor_depth`): a point under it is (z_f - z) / sqrt(1 + s^2) deep along
+    the floor's normal (s a, 1) / sqrt(1 + s^2), a the unit horizontal way from the shore's
+    nearest point; a hull runs aground on it.
+
     Returns:
-        (N,) m, the depth (0 outside every obstacle; the deepest where several), (N, 2) the
-        unit outward normal there (zeros outside), and (N,) int the obstacle's index in
+        (N,) m, the depth (0 outside every obstacle; the deepest where several), (N, 3) the
+        unit outward normal there, world frame (horizontal from a wall, up and seaward from a
+        shelving floor; zeros outside), and (N,) int the obstacle's index in
         ``world.obstacles`` (-1 outside).
     """
     depth = np.zeros(xy.shape[0])
-    normal = np.zeros((xy.shape[0], 2))
+    normal = np.zeros((xy.shape[0], 3))
     which = np.full(xy.shape[0], -1, dtype=np.intp)
     for k, o in enumerate(world.obstacles):
         d, n = (_in_prism(o, xy) if isinstance(o, Prism) else _in_cylinder(o, xy, velocity))
-        d = np.where(z <= o.top, d, 0.0)
-        deeper = d > depth
-        depth = np.where(deeper, d, depth)
-        normal[deeper] = n[deeper]
-        which[deeper] = k
+        found = [(np.where(z <= o.top, d, 0.0), np.pad(n, ((0, 0), (0, 1))))]
+        if isinstance(o, Prism) and math.isfinite(o.slope):
+            found.append(_under_floor(o, xy, z))
+        for d, n in found:
+            deeper = d > depth
+            depth = np.where(deeper, d, depth)
+            normal[deeper] = n[deeper]
+            which[deeper] = k
     return depth, normal, which
+
+
+def _under_floor(prism: Prism, xy: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(N,) depth under ``prism``'s shelving floor (0 above it) and (N, 3) its unit normal."""
+    a, e, _ = prism.edges
+    rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
+    t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)
+    off = rel - t[..., None] * e[None]  # from each edge's nearest point
+    dist = np.hypot(off[..., 0], off[..., 1])
+    way = np.argmin(dist, axis=1)
+    rows = np.arange(xy.shape[0])
+    r, away = dist[rows, way], off[rows, way]
+    outside = ~inside_polygon(prism.points, xy) & (r > 0.0)
+    s = prism.slope
+    scale = math.sqrt(1.0 + s * s)
+    depth = np.where(outside, (-s * r - z) / scale, 0.0)
+    depth = np.maximum(depth, 0.0)
+    normal = np.zeros((xy.shape[0], 3))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        normal[:, :2] = np.where(outside[:, None], s * away / r[:, None], 0.0)
+    normal[:, 2] = 1.0
+    return depth, normal / scale
 
 
 def floor_depth(world: World, xy: np.ndarray, depth: float) -> np.ndarray:

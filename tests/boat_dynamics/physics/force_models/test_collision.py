@@ -216,3 +216,25 @@ def test_two_boats_part_with_the_restitution_asked_for(restitution):
     parting = -surge[hit:].sum(axis=1).min()
     assert parting / closing == pytest.approx(restitution, abs=0.1)
     assert np.all(surge[hit + 10] < 0.0)
+
+
+def test_a_boat_coasting_onto_a_shelving_shore_runs_aground_short_of_its_edge():
+    # A shore from x = 8 whose floor rises 1 in 10 (0.6 m deep 6 m out): the default boat
+    # (draft 0.5 m, bow at x = 2) launched at 3 m/s, no thrust, touches bottom about 3 m
+    # out, rides up, and stops there aground: bow up, lifted, the floor carrying part of its
+    # weight, its bow short of the edge (where the water is 0 m deep). The floor's softer
+    # contact (FLOOR_SOFTNESS) keeps the push under the bow from throwing it up: with the
+    # walls' stiffness it was thrown 3.9 m into the air.
+    shore = Prism.make("shore", [[8.0, -50.0], [60.0, -50.0], [60.0, 50.0], [8.0, 50.0]],
+                       2.0, 0.1)
+    world = World((shore,), ContactParams(10.0, 0.2, 0.3))
+    bow, surge, state = _boat_into(world, 3.0, 8.0)
+    assert bow.max() < 8.0, f"the bow reached x = {bow.max():.2f}, past the edge"
+    assert 5.0 < bow[-1]
+    assert abs(surge[-100:]).max() < 0.05  # at rest for the last second
+    _, _, afloat = _boat_into(World(), 0.0, 0.01)
+    rise = state.position[0, 2] - afloat.position[0, 2]
+    assert 0.05 < rise < 0.5, f"the centre of mass {rise:.3f} m above where it floats"
+    x, y, zq, w = state.orientation[0]
+    pitch = math.asin(2 * (w * y - zq * x))
+    assert math.radians(-15.0) < pitch < math.radians(-0.5)  # bow up

@@ -21,7 +21,9 @@ def _probe(world, xy, z=None, velocity=None):
     xy = np.asarray(xy, dtype=float).reshape(-1, 2)
     z = np.zeros(xy.shape[0]) if z is None else np.asarray(z, dtype=float)
     v = np.zeros_like(xy) if velocity is None else np.asarray(velocity, dtype=float)
-    return penetration(world, xy, z, v)[:2]
+    depth, normal, _ = penetration(world, xy, z, v)
+    assert np.all(normal[:, 2] == 0.0)  # walls: the way out is horizontal
+    return depth, normal[:, :2]
 
 
 def test_a_point_in_a_square_leaves_through_its_nearest_side():
@@ -76,7 +78,7 @@ def test_the_deepest_obstacle_decides_where_two_overlap():
                                        np.zeros(3), np.zeros((3, 2)))
     # the cylinder: 3 - 1.8, the square 0.2; then the cylinder alone; then neither
     np.testing.assert_allclose(depth, [1.2, 0.5, 0.0])
-    np.testing.assert_allclose(normal, [[0.0, -1.0], [1.0, 0.0], [0.0, 0.0]])
+    np.testing.assert_allclose(normal, [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
     np.testing.assert_array_equal(which, [1, 1, -1])
 
 
@@ -112,3 +114,17 @@ def test_the_floor_shelves_to_zero_at_a_sloped_shore_and_nowhere_else():
     np.testing.assert_allclose(depth, [0.0, 1.0, 0.25, 0.05 * math.hypot(25, 1), 40.0],
                                atol=1e-12)  # the quay's point is nearest the shore's corner
     assert np.all(floor_depth(World((quay,)), xy, 40.0) == 40.0)
+
+
+def test_a_point_under_a_shelving_floor_is_pushed_up_the_slope():
+    # shore east of x = 10, floor z = -0.1 (10 - x) west of it: at x = 5 it is 0.5 m deep
+    shore = Prism.make("shore", [[10, -50], [60, -50], [60, 50], [10, 50]], 2.0, 0.1)
+    world = World((shore,))
+    xy = np.array([[5.0, 0.0], [5.0, 0.0], [-20.0, 0.0]])
+    depth, normal, which = penetration(world, xy, np.array([-0.8, -0.3, -0.8]), np.zeros((3, 2)))
+    # 0.3 m under the floor at x = 5, measured along its normal (-0.1, 0, 1) / sqrt(1.01);
+    # above it; far offshore (3 m of water) above it
+    np.testing.assert_allclose(depth, [0.3 / math.sqrt(1.01), 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(normal[0], np.array([-0.1, 0.0, 1.0]) / math.sqrt(1.01))
+    np.testing.assert_array_equal(which, [0, -1, -1])
+    assert world.shelving == 0.1 and World((Prism.make("q", SQUARE, 1.0),)).shelving == math.inf
