@@ -52,7 +52,7 @@ def test_hostile_environment_and_wave_field_messages_are_refused_and_counted(boa
     assert ("wind.gust_components: 4000000000 is not allowed: an integer in [1, 1000]; "
             "keeping the previous current and wind") in out
     assert out.count("[boat_dynamics]: ignoring invalid /ocean/wave_field") == 1
-    assert "'20000 components' is not allowed: at most 1000; keeping the previous sea" in out
+    assert "'20000 components' is not allowed: at most 4096; keeping the previous sea" in out
 
 
 def test_a_boat_whose_state_diverges_is_stopped_and_the_run_exits_3(boatsim, tmp_path):

@@ -74,8 +74,8 @@ INVERSION_MAX_ITERATIONS = 60
 
 #: The most components a sea may have, whoever gives it: a scenario, the ocean node's
 #: parameters, an /ocean/wave_field message (each component costs every query point a
-#: sin/cos; a spectrum's default is 16, its maximum 1000).
-MAX_COMPONENTS = 1000
+#: sin/cos; a spectrum's default is 16, its maximum 1000; an FFT tile of 64 x 64 has 3969).
+MAX_COMPONENTS = 4096
 
 
 class InvalidSeaStateError(InvalidValueError):
