@@ -83,6 +83,17 @@ EXERCISES: dict[str, dict] = {
                      {"type": "lidar", "rings": 4, "sea": "clutter"},
                      {"type": "ais", "range": 20000.0}, {"type": "radar"}])],
     },
+    "an fft ocean, phillips": {
+        "ocean": {"model": "fft", "fft": {"resolution": 8, "seed": 1, "wind_speed": 6.0,
+                                          "phillips_constant": 0.002}},
+        "boats": [_boat()],
+    },
+    "an fft ocean, jonswap": {
+        "ocean": {"model": "fft", "fft": {"resolution": 8, "spectrum": "jonswap",
+                                          "significant_height": 1.0, "peak_period": 5.0,
+                                          "gamma": 2.0, "spreading": 5.0}},
+        "boats": [_boat()],
+    },
     "a beaufort sea, a mesh hull with coefficients, sample points, named thrusters": {
         "ocean": {"spectrum": {"beaufort": 4, "spreading": None}},
         "boats": [

@@ -30,6 +30,7 @@ from ocean_sim.physics.environment import (
     Environment,
     Wind,
 )
+from ocean_sim.physics.fft import FFT_SPECTRA, MAX_RESOLUTION, OCEAN_MODELS, TileSpec, tile_sea
 from ocean_sim.physics.spectra import SPECTRUM_TYPES, SpectrumSpec, beaufort_sea, generate_sea
 from ocean_sim.physics.waves import (
     DEFAULT_PRECISION,
@@ -106,12 +107,25 @@ def environment_block(raw: Any, seed: int) -> Environment:
 
 
 def ocean_block(raw: Any, sim: SimulationSettings) -> WaveField:
-    """The ``ocean:`` block: explicit components and/or a generated spectrum."""
+    """The ``ocean:`` block: explicit components and/or a generated spectrum, or an FFT tile.
+
+    ``model: gerstner`` (the default) sums ``components`` and ``spectrum``; ``model: fft`` is
+    the tile of ``fft:`` (ocean_sim/physics/fft.py), as its Gerstner components.
+    """
     key = "ocean"
     d = mapping(raw, key)
-    only(d, key, ("depth", "components", "spectrum"))
+    only(d, key, ("model", "depth", "components", "spectrum", "fft"))
+    model = choice(d, "model", key, "gerstner", OCEAN_MODELS)
     depth = number(d, "depth", key, math.inf, 0.0, math.inf, low_open=True, unit="m",
                     allow_inf=True)
+    if model == "fft":
+        for other in ("components", "spectrum"):
+            if other in d:
+                raise ScenarioError(f"{key}.{other}", d[other],
+                                    "not with ocean.model fft: the sea is the tile of ocean.fft")
+        return _fft(d.get("fft"), sim, depth)
+    if "fft" in d:
+        raise ScenarioError(f"{key}.fft", d["fft"], "only with ocean.model: fft")
     generated = _spectrum(d.get("spectrum"), sim, depth)
     describe(f"{key}.components", None, "a list of {amplitude, wavelength, direction_deg, "
              "steepness, phase}", default_doc="none")
@@ -186,3 +200,49 @@ def _spectrum(raw: Any, sim: SimulationSettings, depth: float) -> tuple[WaveComp
     except InvalidSeaStateError as exc:
         raise ScenarioError(f"ocean.{exc.key}", exc.value, exc.allowed) from exc
     return sea.components
+
+
+#: ``ocean.fft`` keys that only one spectrum reads.
+_FFT_ONLY = {"wind_speed": "phillips", "phillips_constant": "phillips",
+             "significant_height": "jonswap", "peak_period": "jonswap", "gamma": "jonswap",
+             "spreading": "jonswap"}
+
+
+def _fft(raw: Any, sim: SimulationSettings, depth: float) -> WaveField:
+    """The sea of ``ocean.fft``: Tessendorf's tile as Gerstner components."""
+    key = "ocean.fft"
+    d = mapping(raw, key)
+    only(d, key, ("size", "resolution", "seed", "spectrum", "direction_deg", "choppiness",
+                  *_FFT_ONLY))
+    spectrum = choice(d, "spectrum", key, "phillips", FFT_SPECTRA)
+    for name, owner in _FFT_ONLY.items():
+        if name in d and owner != spectrum:
+            raise ScenarioError(f"{key}.{name}", d[name], f"only with spectrum: {owner}")
+    resolution = integer(d, "resolution", key, 32, 4, MAX_RESOLUTION,
+                         note="and even (N x N points, (N - 1)^2 waves)")
+    if resolution % 2:
+        raise ScenarioError(f"{key}.resolution", resolution,
+                            f"must be an even integer in [4, {MAX_RESOLUTION}]")
+    describe(f"{key}.seed", None, "integer >= 0", default_doc="simulation.seed")
+    seed = d.get("seed", sim.seed)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ScenarioError(f"{key}.seed", seed, "must be an integer >= 0")
+    values = dict(
+        size=number(d, "size", key, 200.0, 0.0, 1e6, low_open=True, unit="m"),
+        resolution=resolution, seed=seed, spectrum=spectrum,
+        wind_speed=number(d, "wind_speed", key, 8.0, 0.0, 100.0, unit="m/s"),
+        phillips_constant=number(d, "phillips_constant", key, TileSpec.phillips_constant,
+                                 0.0, 1.0, default_doc="0.00175: Pierson-Moskowitz's "
+                                 "H_s = 0.21 U^2 / g"),
+        significant_height=number(d, "significant_height", key, 1.0, 0.0, 30.0, unit="m"),
+        peak_period=number(d, "peak_period", key, 6.0, 0.5, 40.0, unit="s"),
+        gamma=number(d, "gamma", key, 3.3, 1.0, 7.0),
+        spreading=number(d, "spreading", key, 10.0, 0.0, 1000.0),
+        direction=math.radians(number(d, "direction_deg", key, 0.0, -360.0, 360.0,
+                                      unit="deg")),
+        choppiness=number(d, "choppiness", key, 0.5, 0.0, 1.0),
+        gravity=sim.gravity, depth=depth)
+    try:
+        return tile_sea(TileSpec(**values))
+    except InvalidSeaStateError as exc:
+        raise ScenarioError(f"ocean.{exc.key}", exc.value, exc.allowed) from exc
