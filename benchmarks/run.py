@@ -1,6 +1,7 @@
 """boatsim benchmarks (`make bench`): prints figures, asserts nothing.
 
-Wave queries (heights + normals + velocities, inversion included), the boat step, and the
+Wave queries (heights + normals + velocities, inversion included), the FFT ocean's tile and
+queries beside the Gerstner sum (fft_ocean.py), the boat step, and the
 real-time factor of `boatsim run --fast` (in-process, no subscribers), and the same run in one
 process against shards (`--shards N`, subprocesses as a user starts them).
 """
@@ -507,12 +508,16 @@ def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--run-seconds", type=float, default=20.0)
-    parser.add_argument("--only", choices=("instructions", "waves", "boat", "run", "phases",
-                                           "scale"),
+    parser.add_argument("--only", choices=("instructions", "waves", "fft", "boat", "run",
+                                           "phases", "scale"),
                         help="one group only")
     args = parser.parse_args()
     if args.only in (None, "waves"):
         bench_waves()
+    if args.only in (None, "fft"):
+        from fft_ocean import bench_fft
+
+        bench_fft()
     if args.only in (None, "boat"):
         bench_boat_step()
     if args.only in (None, "run"):
