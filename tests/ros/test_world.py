@@ -136,5 +136,5 @@ def test_a_lidar_sees_the_pier_and_a_scanner_and_a_radar_the_other_boat(boatsim,
     assert not np.any((radar[:, 0] < -1.0) & (np.abs(radar[:, 1]) < 5.0))  # open water aft
     assert {m.name for _, m in msgs["/a/ais/reports"]} == {"b"}
     assert msgs["/buoy/odom"] and msgs["/buoy/wrench/mooring"]
-    assert "a buoy moored by a 9.7 m line to an anchor at [0.0, -6.0, -10.0] m; no command " \
-        "topics" in sim.output(), sim.output()
+    assert "buoy buoy: moored by a 9.7 m line to an anchor at [0.0, -6.0, -10.0] m; no " \
+        "command topics" in sim.output(), sim.output()

@@ -168,7 +168,7 @@ def _boat_lines(spec: BoatSpec) -> list[tuple[str, str]]:
     lines = [("info", _hydrodynamics(spec.params))]
     if spec.kind == "buoy":
         line = spec.params.anchor_line
-        lines.append(("info", f"a buoy moored by a {line.length:.1f} m line to an anchor at "
+        lines.append(("info", f"moored by a {line.length:.1f} m line to an anchor at "
                               f"{np.round(line.anchor, 2).tolist()} m; no command topics"))
     elif spec.commands is not None:
         lines.append(("info", "scripted commands; ignoring command topics"))
@@ -406,12 +406,12 @@ class DynamicsNode(Node):
             if len(specs) <= _LOGGED_BOATS:
                 pos, q = reference_pose(spec.params, spec.initial)
                 vel = rotation_matrix(q) @ spec.initial.velocity
-                log.info(f"boat {label}: mass {spec.params.mass:g} kg, start at "
+                log.info(f"{spec.kind} {label}: mass {spec.params.mass:g} kg, start at "
                          f"({pos[0]:.2f}, {pos[1]:.2f}, {pos[2]:.2f}) m, moving "
                          f"at ({vel[0]:.2f}, {vel[1]:.2f}, {vel[2]:.2f}) m/s; publishing "
                          f"{names.boat_topic(spec.name, names.ODOM)}")
                 for level, line in lines:
-                    _log_at(log, level, f"boat {label}: {line}")
+                    _log_at(log, level, f"{spec.kind} {label}: {line}")
             for level_line in (("info", f"mass {spec.params.mass:g} kg"), *lines):
                 groups.setdefault(level_line, []).append(label)
         if len(specs) <= _LOGGED_BOATS:
