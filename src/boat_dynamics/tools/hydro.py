@@ -72,8 +72,8 @@ def describe(params: BoatParams, z_eq: float) -> str:
 
 
 def _selected(scenario: Scenario, names: Sequence[str] | None) -> list[BoatSpec]:
-    if not names:
-        return list(scenario.boats)
+    if not names:  # the boats; not world.buoys (no coefficients: small against the waves)
+        return [b for b in scenario.boats if b.kind == "boat"]
     known = {b.name: b for b in scenario.boats}
     for name in names:
         if name not in known:

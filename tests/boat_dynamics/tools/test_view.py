@@ -37,4 +37,4 @@ def test_a_wave_field_the_ocean_would_refuse_is_logged_once_and_the_view_goes_on
     for _ in range(3):
         live._on_field(WaveField(gravity=9.81, depth=math.inf, components=[one] * 20_000))
     assert live.refused == 3 and live.sea is good
-    assert len(node.logger.errors) == 1 and "at most 1000" in node.logger.errors[0]
+    assert len(node.logger.errors) == 1 and "at most 4096" in node.logger.errors[0]
