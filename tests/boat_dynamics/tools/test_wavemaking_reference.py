@@ -187,3 +187,71 @@ def test_the_cylinder_is_the_floating_one(cyl):
     np.testing.assert_allclose(rao, cyl["rao_heave"], rtol=1e-9)
     assert abs(rao[0]) == pytest.approx(1.0, abs=0.01)
     assert int(np.argmax(np.abs(rao))) == int(np.argmin(np.abs(w - 2.5)))
+
+
+def test_the_pair_is_two_shipped_boxes_and_reciprocal(pair, box):
+    # Each box on the shipped file's panels (2 x (2120 + 800)); the box alone on them has the
+    # box file's RAOs (beam and head: equal). Reciprocity of the 12-dof problem: A and B
+    # symmetric within 0.9 % and 2.0 % of their largest value (measured).
+    assert int(pair["panels"]) == 2 * 2120 and int(pair["lid_panels"]) == 2 * 800
+    heads = [list(box["headings_deg"]).index(h) for h in pair["headings_deg"]]
+    np.testing.assert_allclose(pair["rao_single"], box["rao"][:, heads], rtol=1e-9, atol=1e-12)
+    for name, tol in (("added_mass", 0.015), ("radiation_damping", 0.03)):
+        m = pair[name]
+        asym = np.abs(m - m.transpose(0, 2, 1)).max(axis=(1, 2))
+        assert np.all(asym <= tol * np.abs(m).max(axis=(1, 2)))
+
+
+def test_in_head_seas_the_pair_moves_as_mirror_images(pair):
+    # The boxes at y = -3 and +3 m are each other's mirror image about y = 0: the same heave and
+    # pitch, opposite roll (to round-off; measured 1e-9 of the largest).
+    head = list(pair["headings_deg"]).index(180.0)
+    stb, port = pair["rao_pair"][:, head, 0], pair["rao_pair"][:, head, 1]
+    scale = np.abs(stb).max()
+    assert np.abs(stb[:, [HEAVE, PITCH]] - port[:, [HEAVE, PITCH]]).max() <= 1e-4 * scale
+    assert np.abs(stb[:, ROLL] + port[:, ROLL]).max() <= 1e-4 * scale
+
+
+def test_in_long_waves_a_box_does_not_feel_its_neighbour(pair):
+    # Waves 22 m and longer (omega <= 1.68 rad/s, 3.7 times the 6 m spacing): heave, roll
+    # (beam) and pitch (head) of either box within 1 % of the box alone, phases within 1 deg
+    # (measured 0.1 % and 0.12 deg).
+    long = pair["omega"] <= 1.7
+    P, S = pair["rao_pair"][long], pair["rao_single"][long]
+    for h, dofs in ((0, [HEAVE, ROLL]), (1, [HEAVE, PITCH])):
+        for b in range(2):
+            ratio = P[:, h, b, dofs] / S[:, h, dofs]
+            assert np.abs(np.abs(ratio) - 1.0).max() <= 0.01
+            assert np.degrees(np.abs(np.angle(ratio))).max() <= 1.0
+    assert np.abs(P[:, 1, :, ROLL]).max() <= 0.002  # rad/m: no roll in head seas yet
+
+
+@pytest.mark.parametrize(("omega", "heading", "body", "dof", "ratio"), [
+    # beam seas (toward +y: the starboard box is the weather one), 2.2 s waves (7.5 m): both
+    # heave 22 % more, the weather box rolls 21 % less, the lee one 17 % more;
+    (2.859, 0, 0, HEAVE, 1.215), (2.859, 0, 1, HEAVE, 1.215),
+    (2.859, 0, 0, ROLL, 0.794), (2.859, 0, 1, ROLL, 1.168),
+    # 1.8 s waves (5.2 m): the weather box as if alone, the lee one sheltered: half the
+    # heave and roll;
+    (3.449, 0, 0, HEAVE, 0.978), (3.449, 0, 1, HEAVE, 0.497), (3.449, 0, 1, ROLL, 0.457),
+    # head seas, 2.2 s: 22 % more heave, 0.6 % less pitch.
+    (2.859, 1, 0, HEAVE, 1.218), (2.859, 1, 0, PITCH, 0.994),
+])
+def test_in_short_waves_the_neighbour_changes_the_motion(pair, omega, heading, body, dof,
+                                                        ratio):
+    # |RAO with the other box| / |RAO alone| (the two-body solution; stored figures, within
+    # 0.03: the pair on 0.14 m panels gave the same within 0.01).
+    i = int(np.argmin(np.abs(pair["omega"] - omega)))
+    alone = pair["rao_single"][i, heading, dof]
+    assert abs(pair["rao_pair"][i, heading, body, dof]) / abs(alone) == pytest.approx(
+        ratio, abs=0.03)
+
+
+def test_in_head_seas_the_neighbour_makes_the_boxes_roll(pair):
+    # Alone, a box in head seas does not roll; beside the other it rolls 0.355 rad/m in the
+    # 2.2 s waves (its roll resonance: potential damping only, no viscous roll damping), equal
+    # and opposite for the two boxes.
+    i = int(np.argmin(np.abs(pair["omega"] - 2.859)))
+    assert np.abs(pair["rao_single"][:, 1, ROLL]).max() <= 1e-6
+    assert abs(pair["rao_pair"][i, 1, 0, ROLL]) == pytest.approx(0.355, abs=0.02)
+    assert int(np.argmax(np.abs(pair["rao_pair"][:, 1, 0, ROLL]))) == i
