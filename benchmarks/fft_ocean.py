@@ -7,11 +7,10 @@ grid points, the per-point surface query (inverted), and a boat's step.
 
 from __future__ import annotations
 
-import math
-import time
 from dataclasses import replace
 
 import numpy as np
+from timing import best_of
 
 from boat_dynamics.physics.core import pipeline
 from boat_dynamics.physics.core.boat import BoatInputs
@@ -24,20 +23,10 @@ from ocean_sim.physics.waves import WaveField, sample_surface
 __all__ = ["bench_fft"]
 
 
-def _best_of(fn, repeats: int) -> float:
-    """Fastest of ``repeats`` timed calls, s."""
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
 def _per_point(sea: WaveField, xy: np.ndarray) -> float:
     """Seconds per point of sample_surface (float64, inverted) at ``xy``."""
     sample_surface(sea, xy, 1.0)
-    return _best_of(lambda: sample_surface(sea, xy, 12.3), 5) / xy.shape[0]
+    return best_of(lambda: sample_surface(sea, xy, 12.3), 5) / xy.shape[0]
 
 
 def _boat_step(sea: WaveField) -> float:
@@ -55,7 +44,7 @@ def _boat_step(sea: WaveField) -> float:
         state[0] = s
 
     steps()
-    return _best_of(steps, 5) / 20
+    return best_of(steps, 5) / 20
 
 
 def bench_fft() -> None:
@@ -73,8 +62,8 @@ def bench_fft() -> None:
         sea, h0 = tile_sea(spec), tile_amplitudes(spec)
         x0 = np.arange(n) * size / n
         grid = np.stack([g.ravel() for g in np.meshgrid(x0, x0, indexing="ij")], axis=1)
-        fft = _best_of(lambda spec=spec, h0=h0: build_tile(spec, 12.3, h0), 10)
-        direct = _best_of(lambda sea=sea, grid=grid: sample_surface(sea, grid, 12.3,
+        fft = best_of(lambda spec=spec, h0=h0: build_tile(spec, 12.3, h0), 10)
+        direct = best_of(lambda sea=sea, grid=grid: sample_surface(sea, grid, 12.3,
                                                                     invert=False), 3)
         print(f"  tile {n:>2} x {n:<2} ({len(sea.components):>4} waves): build by FFT "
               f"{fft * 1e3:7.3f} ms ({fft / n**2 * 1e9:5.0f} ns/grid point), direct sum at "

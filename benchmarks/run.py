@@ -19,6 +19,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+from timing import best_of
 
 from boat_dynamics.physics.core import pipeline
 from boat_dynamics.physics.core.boat import BoatInputs
@@ -31,16 +32,6 @@ keep_freed_memory()  # as `boatsim` does (see boat_msgs_py/process.py)
 
 _BOX_COEFFICIENTS = (Path(__file__).resolve().parents[1] / "tests" / "data" / "hydro"
                      / "box_4x2x1_d0.5.npz")
-
-
-def _best_of(fn, repeats: int) -> float:
-    """Fastest of ``repeats`` timed calls, s."""
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def _sea(n: int, seed: int = 0) -> WaveField:
@@ -75,7 +66,7 @@ def bench_waves() -> None:
                         return _sample_numpy(sea, xy, 123.4, "float64", invert)
                     return sample_surface(sea, xy, 123.4, precision=precision, invert=invert)
 
-                sec = _best_of(query, repeats)
+                sec = best_of(query, repeats)
                 err = np.abs(query().heights - ref).max()
                 label = "inverted" if invert else "ignore horizontal"
                 print(f"  {points:>7} pts x {comps:>2} comps, {precision}, {label:<17}: "
@@ -140,7 +131,7 @@ def bench_boat_step() -> None:
             state[0] = s
 
         alone()  # settle from the release first, then time chunks of steps
-        figures = [f"alone {_best_of(alone, 15) / n * 1e6:8.1f}"]
+        figures = [f"alone {best_of(alone, 15) / n * 1e6:8.1f}"]
         for fleet_size in fleet_sizes:
             side = math.ceil(math.sqrt(fleet_size))
             fleet_sc = _initialized(parse_scenario({"boats": [
@@ -159,7 +150,7 @@ def bench_boat_step() -> None:
                 fleet_state[0] = s
 
             together()
-            fsec = _best_of(together, 15)
+            fsec = best_of(together, 15)
             figures.append(f"in a fleet of {fleet_size:>3}: {fsec / (m * fleet_size) * 1e6:7.1f}")
         print(f"  {label:<42}: {'; '.join(figures)} us per boat-step")
 
@@ -495,7 +486,7 @@ def bench_split() -> None:
     steps = {n: math.inf for n in runs}
     for _ in range(15):  # in turn: a change of this machine's speed hits both
         for n in runs:
-            steps[n] = min(steps[n], _best_of(lambda n=n: chunk(n), 1) / 10)
+            steps[n] = min(steps[n], best_of(lambda n=n: chunk(n), 1) / 10)
     per_boat = (steps[100] - steps[50]) / 50
     fixed = steps[50] - 50 * per_boat
     print(f"  pipeline.step, 50 / 100 mesh boats: {steps[50] * 1e6:.0f} / "
