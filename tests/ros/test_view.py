@@ -2,7 +2,8 @@
 
 The browser test opens the served page in headless Chromium (Debian's chromium and
 chromium-driver, which `make test` installs) through Selenium, with SwiftShader's software
-WebGL, and looks at the screenshot's pixels: the sea's blues and the hulls' colours.
+WebGL, and looks at the screenshot's pixels: the sea's blues, the hulls' colours and the
+world's obstacles (ros/world.py's warm grey, which nothing else on the page is drawn in).
 """
 
 import shutil
@@ -13,18 +14,32 @@ import time
 
 import numpy as np
 import pytest
-from support import cli_run
+import yaml
+from support import ROOT, cli_run
 from support import rrd_entities as _entities
 
 MULTI = "scenarios/multi_boat.yaml"
+#: The bag's world: MULTI's three boats and two obstacles in the camera's view, clear of the
+#: boats' 5 s (a cylinder north-east of alpha, a pier beyond it).
+WORLD = {"obstacles": [
+    {"name": "tower", "type": "cylinder", "center": [10.0, 4.0], "radius": 2.0, "top": 4.0},
+    {"name": "pier", "type": "polygon", "top": 2.0,
+     "points": [[16.0, 6.0], [19.0, 6.0], [19.0, 14.0], [16.0, 14.0]]}]}
+#: Their markers' entities: the cylinder, the pier's walls and its outline (ros/world.py).
+OBSTACLES = {"/world/obstacles/obstacles/0", "/world/obstacles/obstacles/1",
+             "/world/obstacles/obstacles/100001"}
 #: rerun-sdk (the view extra; make test installs it) needs Python 3.11.
 pytestmark = pytest.mark.skipif(sys.version_info < (3, 11), reason="rerun-sdk needs 3.11+")
 
 
 @pytest.fixture(scope="module")
 def bag(tmp_path_factory):
-    path = tmp_path_factory.mktemp("view") / "bag"
-    out = cli_run("run", MULTI, "--fast", "--duration", "5", "--record", str(path))
+    """MULTI with :data:`WORLD`, 5 s recorded (the view is given MULTI: the same boats)."""
+    folder = tmp_path_factory.mktemp("view")
+    scenario, path = folder / "multi_world.yaml", folder / "bag"
+    scenario.write_text(yaml.safe_dump({**yaml.safe_load((ROOT / MULTI).read_text()),
+                                        "world": WORLD}))
+    out = cli_run("run", str(scenario), "--fast", "--duration", "5", "--record", str(path))
     assert out.returncode == 0, out.stderr
     return path
 
@@ -38,6 +53,7 @@ def test_a_bag_is_drawn_boat_by_boat_on_its_sea(bag, tmp_path):
         assert {f"/world/{boat}", f"/world/{boat}/hull", f"/world/{boat}/name",
                 f"/world/{boat}/forces/thrust", f"/world/paths/{boat}"} <= drawn, drawn
     assert {"/world/sea", "/world/focus"} <= drawn
+    assert OBSTACLES <= drawn, drawn
 
 
 def test_the_live_view_draws_the_running_simulation(boatsim, probe, tmp_path):
@@ -137,14 +153,23 @@ def _free_port():
 
 
 def _shares(png):
-    """(share of sea-blue pixels, count of hull-orange ones) in the 3-D view of a screenshot."""
+    """(share of sea-blue pixels, count of hull-orange ones, count of obstacle-grey ones) in the
+    3-D view of a screenshot.
+
+    The obstacles are ros/world.py's (140, 128, 115) walls and cylinders, shaded darker on
+    their sides: a warm grey, r > g > b with r 1.1-1.4 times b. The page has no such pixel
+    without them (0 of the 3-D view's, measured; the labels' greys are neutral or brighter,
+    the hulls' edges on the sea redder), 3865 with :data:`WORLD`.
+    """
     from PIL import Image
 
     a = np.asarray(Image.open(png).convert("RGB")).astype(int)[45:-40]  # no title, time bar
     r, g, b = a[..., 0], a[..., 1], a[..., 2]
     sea = (b > r + 40) & (b > g + 10) & (b > 90)
     orange = (r > 200) & (g > 80) & (g < 160) & (b < 90)  # alpha's hull, (232, 118, 36)
-    return float(sea.mean()), int(orange.sum())
+    grey = ((r < 170) & (b > 40) & (r > g) & (g > b) & (r - g < 20) & (10 * r > 11 * b)
+            & (10 * r < 14 * b))
+    return float(sea.mean()), int(orange.sum()), int(grey.sum())
 
 
 def _browser():
@@ -166,6 +191,7 @@ def _browser():
 
 
 def test_the_page_shows_the_boats_on_the_sea_in_a_headless_browser(bag, boatsim, tmp_path):
+    """And the world: the bag's obstacles (/world/markers) drawn, counted by their colour."""
     web, grpc = _free_port(), _free_port()
     view = boatsim("view", str(bag), "--scenario", MULTI, "--web-port", str(web),
                    "--grpc-port", str(grpc), name="view")
@@ -181,13 +207,15 @@ def test_the_page_shows_the_boats_on_the_sea_in_a_headless_browser(bag, boatsim,
         deadline = time.monotonic() + 120  # the viewer's wasm compiles in software
         while True:
             driver.save_screenshot(str(shot))
-            sea, hull = _shares(shot)
-            if (sea > 0.1 and hull > 30) or time.monotonic() > deadline:
+            sea, hull, world = _shares(shot)
+            if (sea > 0.1 and hull > 30 and world > 1000) or time.monotonic() > deadline:
                 break
             time.sleep(2.0)
     finally:
         driver.quit()
-    print(f"screenshot: {shot} (sea {sea:.0%} of the view, {hull} hull pixels)")
+    print(f"screenshot: {shot} (sea {sea:.0%} of the view, {hull} hull pixels, {world} "
+          "obstacle pixels)")
     assert sea > 0.1, f"the sea covers {sea:.1%} of the view ({shot})"
     assert hull > 30, f"{hull} pixels of alpha's orange hull ({shot})"
+    assert world > 1000, f"{world} pixels of the obstacles' grey ({shot})"
     assert view.stop() == 0
