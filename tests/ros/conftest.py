@@ -65,6 +65,47 @@ def _tagged(tag: str) -> list[int]:
     return pids
 
 
+#: s of each file's tests, measured (the sums of `--durations=0` of this stage, two workers):
+#: the order in which `make test`'s `--dist loadfile` hands the files to its workers, longest
+#: first (see pytest_xdist_make_scheduler). A file not listed counts 6 s a test.
+FILE_SECONDS = {
+    "test_end_to_end.py": 153, "test_scale_out.py": 103, "test_regression.py": 96,
+    "test_introspection_verbs.py": 69, "test_sensors.py": 52, "test_waypoints.py": 43,
+    "test_view.py": 37, "test_golden.py": 25, "test_ocean_node.py": 25,
+    "test_thrusters.py": 20, "test_fuzz.py": 13, "test_world.py": 12,
+    "test_wrench_topics.py": 10, "test_fleet_state.py": 8, "test_hostile_inputs.py": 7,
+    "test_current_and_wind.py": 5, "test_lockstep_client.py": 4, "test_benchmarks.py": 1,
+}
+
+
+@pytest.hookimpl(optionalhook=True)  # pytest-xdist's hook: no error without it
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadfile``: the longest files first (:data:`FILE_SECONDS`), not the ones with
+    the most tests (pytest-xdist's order): it handed out test_waypoints.py's one 46 s test
+    last, and the other worker waited for it."""
+    if config.getvalue("dist") != "loadfile":
+        return None
+    from xdist.scheduler import LoadFileScheduling
+
+    class LongestFirst(LoadFileScheduling):
+        _sorted = False
+
+        def _assign_work_unit(self, node):
+            if not self._sorted:  # the queue is complete on the first assignment
+                units = sorted(self.workqueue.items(), key=lambda unit: -_seconds(*unit))
+                self.workqueue.clear()
+                self.workqueue.update(units)
+                self._sorted = True
+            super()._assign_work_unit(node)
+
+    return LongestFirst(config, log)
+
+
+def _seconds(scope: str, tests: dict) -> float:
+    """The expected s of a file's tests (:data:`FILE_SECONDS`)."""
+    return FILE_SECONDS.get(Path(scope).name, 6.0 * len(tests))
+
+
 @pytest.fixture(autouse=True)
 def own_domain(monkeypatch, request):
     """A ROS_DOMAIN_ID of the test's own for its processes and probe; none left at its end.
