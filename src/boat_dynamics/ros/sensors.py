@@ -358,7 +358,7 @@ class SensorPublisher:
         transducer = after.position + rotation_matrix(after.orientation) @ (
             sensor.spec.position - com)
         floor = None
-        if any(math.isfinite(getattr(o, "slope", math.inf)) for o in self._world.obstacles):
+        if math.isfinite(self._world.shelving):
             def floor(xy: np.ndarray) -> float:  # shelving up to a shore
                 return float(floor_depth(self._world, xy[None, :], depth)[0])
         reading = measure_depth(sensor.spec, sensor.key, sensor.state, transducer,

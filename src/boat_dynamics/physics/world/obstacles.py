@@ -214,10 +214,7 @@ def penetration(world: World, xy: np.ndarray, z: np.ndarray, velocity: np.ndarra
 
 def _under_floor(prism: Prism, xy: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(N,) depth under ``prism``'s shelving floor (0 above it) and (N, 3) its unit normal."""
-    a, e, _ = prism.edges
-    rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
-    t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)
-    off = rel - t[..., None] * e[None]  # from each edge's nearest point
+    off = _edge_offsets(prism, xy)  # from each edge's nearest point
     dist = np.hypot(off[..., 0], off[..., 1])
     way = np.argmin(dist, axis=1)
     rows = np.arange(xy.shape[0])
@@ -249,12 +246,17 @@ def floor_depth(world: World, xy: np.ndarray, depth: float) -> np.ndarray:
     return out
 
 
-def _edge_distances(prism: Prism, xy: np.ndarray) -> np.ndarray:
-    """(N, P) m: each point's distance to each edge of ``prism``."""
+def _edge_offsets(prism: Prism, xy: np.ndarray) -> np.ndarray:
+    """(N, P, 2) m: each point less its nearest point on each edge of ``prism``."""
     a, e, _ = prism.edges
     rel = xy[:, None, :] - a[None, :, :]  # (N, P, 2)
     t = np.clip(np.einsum("npk,pk->np", rel, e) / np.einsum("pk,pk->p", e, e), 0.0, 1.0)
-    return np.hypot(*np.moveaxis(rel - t[..., None] * e[None], -1, 0))
+    return rel - t[..., None] * e[None]
+
+
+def _edge_distances(prism: Prism, xy: np.ndarray) -> np.ndarray:
+    """(N, P) m: each point's distance to each edge of ``prism``."""
+    return np.hypot(*np.moveaxis(_edge_offsets(prism, xy), -1, 0))
 
 
 def _in_prism(prism: Prism, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
