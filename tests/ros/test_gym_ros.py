@@ -16,6 +16,7 @@ from boat_msgs.srv import Reset
 from geometry_msgs.msg import Pose, Quaternion, Twist
 from gymnasium.utils.env_checker import check_env
 from nav_msgs.msg import Odometry
+from rclpy.event_handler import SubscriptionEventCallbacks
 from rosbags.highlevel import AnyReader
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu
@@ -56,11 +57,21 @@ def test_episodes_over_ros_repeat_follow_boat_env_and_reset_as_asked(boatsim, pr
     path.write_text(SCENARIO)
     sim = boatsim("run", str(path), "--fast", "--lockstep", "--record", str(tmp_path / "bag"))
     clocks, imu, odom = [], [], []
-    # deep queues: the probe spins only between episodes
-    probe.node.create_subscription(Clock, names.CLOCK, lambda m: clocks.append(_ns(m.clock)),
-                                   RECORD_QOS)
-    probe.node.create_subscription(Imu, "/imu/data", imu.append, RECORD_QOS)
-    probe.node.create_subscription(Odometry, "/odom", odom.append, RECORD_QOS)
+    # deep queues: the probe spins only between episodes; it counts an episode's messages
+    # only once its subscriptions have matched the simulation's publishers (a busy machine
+    # matched /imu/data after the first episode: it read none of its 10 readings)
+    matched: dict[str, int] = {}
+
+    def watch(topic: str) -> SubscriptionEventCallbacks:
+        return SubscriptionEventCallbacks(
+            matched=lambda status: matched.__setitem__(topic, status.current_count))
+
+    for kind, topic, keep in ((Clock, names.CLOCK, lambda m: clocks.append(_ns(m.clock))),
+                              (Imu, "/imu/data", imu.append), (Odometry, "/odom", odom.append)):
+        probe.node.create_subscription(kind, topic, keep, RECORD_QOS,
+                                       event_callbacks=watch(topic))
+    probe.spin_until(lambda: len(matched) == 3 and min(matched.values()) >= 1, 90.0,
+                     "the probe's subscriptions matched the simulation's publishers")
     env = RosBoatEnv(str(path), task=TASK, node_name="learning_harness", timeout=90.0)
     try:
         readings, rollouts = [0], []
