@@ -1,0 +1,118 @@
+"""Waves one boat makes, as another boat feels them: local plane waves and their force.
+
+Linear superposition (Newman 1977, sec. 6.17): the sea a boat feels is the incident sea plus
+the waves the other boats make, each radiated, scattered or left in a wake by one of them.
+Near a receiving boat, far from the boat that made them, those waves are locally plane: the
+wide-spacing approximation of multiple-body interaction (Simon 1982, J. Fluid Mech. 120,
+1-25; McIver & Evans 1984, Appl. Ocean Res. 6(2), 101-107), which replaces the outgoing wave
+of one body by the plane wave of its local amplitude, phase and direction at the other.
+Each made wave is then one more component for the receiver's Froude-Krylov and diffraction
+transfer functions (:mod:`.diffraction`), at its own frequency and direction: a
+:class:`LocalWaves`. Interaction beyond the first order (the receiver's waves made by waves
+made) is left out.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
+
+__all__ = ["LocalWaves", "local_wrench", "stacked"]
+
+
+@dataclass(frozen=True)
+class LocalWaves:
+    """N plane waves standing in, near the point ``at``, for waves made by other boats.
+
+    Near ``at`` and at times near ``t``, their elevation is
+    eta(x, t') = sum_n a_n cos(k_n D_n . (x - at) - omega_n (t' - t) + phase_n),
+    with D_n = (cos direction_n, sin direction_n): the convention of the sea's components
+    (:mod:`ocean_sim.physics.waves`, theta = k D . r - omega t + phi), so the transfer
+    functions of :mod:`.diffraction` apply to them unchanged.
+
+    Attributes:
+        at: (2,) m, world x, y of the point they stand for (the receiver's reference point).
+        t: s, the time their phases are taken at.
+        amplitude: (N,) m, >= 0.
+        omega: (N,) rad/s, > 0, the frequency over ground (earth frame).
+        wavenumber: (N,) rad/m, > 0 (deep water: omega^2 / g).
+        direction: (N,) rad, world frame, the direction each travels toward.
+        phase: (N,) rad, each one's phase at ``at`` and ``t``.
+    """
+
+    at: np.ndarray
+    t: float
+    amplitude: np.ndarray
+    omega: np.ndarray
+    wavenumber: np.ndarray
+    direction: np.ndarray
+    phase: np.ndarray
+
+    @classmethod
+    def none(cls, at: np.ndarray, t: float) -> LocalWaves:
+        """No made waves at ``at``."""
+        empty = np.zeros(0)
+        return cls(np.asarray(at, dtype=float), t, empty, empty, empty, empty, empty)
+
+    @property
+    def count(self) -> int:
+        """N, the number of plane waves."""
+        return int(self.amplitude.shape[0])
+
+    def elevation(self, xy: np.ndarray) -> np.ndarray:
+        """(P,) m, their elevation at time ``t`` at P points ``xy`` (P, 2) m near ``at``."""
+        d = np.asarray(xy, dtype=float).reshape(-1, 2) - self.at
+        along = d[:, :1] * np.cos(self.direction) + d[:, 1:] * np.sin(self.direction)
+        return np.cos(along * self.wavenumber + self.phase) @ self.amplitude
+
+
+def stacked(waves: list[LocalWaves]) -> LocalWaves:
+    """The plane waves of several :class:`LocalWaves` at one point and time, as one."""
+    if not waves:
+        raise ValueError("waves: empty, need at least one LocalWaves")
+    first = waves[0]
+    for w in waves[1:]:
+        if not (np.array_equal(w.at, first.at) and w.t == first.t):
+            raise ValueError(f"waves: at {w.at} and t {w.t}, not {first.at} and {first.t}: "
+                             "stack only the waves of one point at one time")
+    return LocalWaves(first.at, first.t, *(np.concatenate([getattr(w, f) for w in waves])
+                                           for f in ("amplitude", "omega", "wavenumber",
+                                                     "direction", "phase")))
+
+
+def local_wrench(hydro: HydroCoefficients, waves: LocalWaves, heading: float,
+                 velocity: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The made waves' diffraction and Froude-Krylov wrenches on the boat at ``waves.at``.
+
+    The transfer functions of ``hydro`` (per metre of amplitude, about the centre of mass,
+    body axes) at each wave's encounter frequency, as for the sea's own components
+    (:func:`.diffraction.excitation_wrench`).
+
+    Args:
+        hydro: the receiving hull's coefficients.
+        waves: the plane waves at its hull reference point, at the time of the step.
+        heading: rad, its yaw.
+        velocity: (2,) m/s, its horizontal velocity over ground, world frame.
+
+    Returns:
+        (6,) diffraction and (6,) Froude-Krylov wrench, force (N) then torque (N m), body
+        frame. Zeros when there are no waves.
+    """
+    if waves.count == 0:
+        return np.zeros(6), np.zeros(6)
+    from boat_dynamics.physics.potential_flow.excitation_kernel import excitation_f64
+
+    dx, dy = np.cos(waves.direction), np.sin(waves.direction)
+    kd = np.ascontiguousarray(np.stack([waves.wavenumber * dx, waves.wavenumber * dy]))
+    xy = np.ascontiguousarray(np.asarray(waves.at, dtype=float).reshape(1, 2))
+    time_phase = np.mod(waves.phase - xy[0] @ kd, 2.0 * np.pi)
+    v = np.ascontiguousarray(np.asarray(velocity, dtype=float).reshape(1, 2))
+    common = (waves.amplitude, waves.omega, waves.wavenumber, dx, dy, waves.direction, xy, kd,
+              time_phase, np.array([float(heading)]), v)
+    scattered = excitation_f64(hydro.omega, hydro.directions, hydro.diffraction, *common, True)
+    incident = excitation_f64(hydro.omega, hydro.directions, hydro.froude_krylov, *common,
+                              False)
+    return scattered[0], incident[0]
