@@ -117,7 +117,8 @@ class _Fleet:
             raise InvalidValueError("task.control_period", task.control_period,
                                     f"must be a whole number of the scenario's physics steps "
                                     f"of {self.dt:g} s")
-        self.system, self.initial = pipeline.start((spec,) * count, scenario.sea)
+        system, self.initial = pipeline.start((spec,) * count, scenario.sea)
+        self.system = system.apart()  # separate environments: none feels another's waves
         self.state = self.initial
         self.own_velocity = np.asarray(spec.velocity, dtype=float)
         self.rudder_limit = float(self.system.params[0].rudder.max_angle)

@@ -20,6 +20,7 @@ __all__ = [
     "FLEET_STATE",
     "LOCKSTEP",
     "LOCKSTEP_READY",
+    "MADE_WAVES_WRENCH",
     "MAP_FRAME",
     "MMSI_BASE",
     "MOORING_WRENCH",
@@ -85,6 +86,9 @@ CARRIAGE_WRENCH = "carriage"
 MOORING_WRENCH = "mooring"
 #: wrench/collision: the obstacles' push on a boat, only in a world with obstacles.
 COLLISION_WRENCH = "collision"
+#: wrench/made_waves: the other boats' waves on a boat (their Froude-Krylov and diffraction
+#: force), only for a boat with coefficients in a fleet where another boat makes waves.
+MADE_WAVES_WRENCH = "made_waves"
 
 WAVE_FIELD = "/ocean/wave_field"
 #: boat_msgs/Environment: the current and the wind (latched, republished on change).

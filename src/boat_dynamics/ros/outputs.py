@@ -76,7 +76,8 @@ class FleetPublisher:
         for i, spec in enumerate(boats):  # 36 ms a boat with 1000 (DDS endpoints)
             if stopped is not None and stopped():
                 raise StartInterrupted(f"stopped while making boat {i} of {len(boats)}")
-            self.pubs.append(_boat_publishers(node, spec, tap, graph, collisions))
+            self.pubs.append(_boat_publishers(node, spec, tap, graph, collisions,
+                                              _feels_waves(boats, i)))
             templates.append(_boat_templates(spec, templates[-1] if templates else {}))
         self._diag_pub = TappedPublisher(node, DiagnosticArray, names.DIAGNOSTICS,
                                          DIAGNOSTICS_QOS, tap)
@@ -92,7 +93,7 @@ class FleetPublisher:
                                           if key in p])
                         for key in ("pose", "twist", *names.WRENCH_SOURCES,
                                     names.CARRIAGE_WRENCH, names.COLLISION_WRENCH,
-                                    names.MOORING_WRENCH)}
+                                    names.MOORING_WRENCH, names.MADE_WAVES_WRENCH)}
         self._state_pub, self._state = None, None  # every boat in one message
         if sim.fleet_state:
             self._state_pub = TappedPublisher(node, FleetStateMsg, names.FLEET_STATE,
@@ -160,6 +161,8 @@ class FleetPublisher:
             [forces.collision.force[i], forces.collision.torque[i]]))
         self._boat_wrenches(names.MOORING_WRENCH, sec, nanosec, now, lambda i: np.concatenate(
             [forces.mooring.force[i], forces.mooring.torque[i]]))
+        self._boat_wrenches(names.MADE_WAVES_WRENCH, sec, nanosec, now, lambda i: np.concatenate(
+            [forces.made_waves.force[i], forces.made_waves.torque[i]]))
 
     def _boat_wrenches(self, key: str, sec: int, nanosec: int, now: float,
                        value: Callable[[int], np.ndarray]) -> None:
@@ -247,12 +250,24 @@ def _moored(params) -> bool:
     return soft or params.anchor_line is not None
 
 
+def _feels_waves(boats: Sequence[BoatSpec], i: int) -> bool:
+    """Whether boat i feels the waves other boats make (:mod:`.wave_interaction`).
+
+    It has coefficients (a file, or an estimate to be made) and another boat makes waves.
+    """
+    p = boats[i].params
+    receiver = p.hydro is not None or (p.derive is not None and p.derive.estimate is not None)
+    return receiver and any(j != i and b.params.made_waves != "none"
+                            for j, b in enumerate(boats))
+
+
 def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None, graph: GraphWatch | None,
-                     collisions: bool) -> dict[str, TappedPublisher]:
+                     collisions: bool, made_waves: bool) -> dict[str, TappedPublisher]:
     """One boat's publishers: odom, pose, twist, wrench/<source> (+ carriage, collision).
 
     wrench/carriage if the boat is towed; wrench/collision in a world with obstacles;
-    wrench/mooring if it is moored (an anchor line, or a soft mooring).
+    wrench/mooring if it is moored (an anchor line, or a soft mooring); wrench/made_waves if
+    it feels other boats' waves (``made_waves``).
     """
     pubs = {key: TappedPublisher(node, cls, names.boat_topic(spec.name, topic), STATE_QOS, tap)
             for key, cls, topic in (("odom", Odometry, names.ODOM),
@@ -261,7 +276,8 @@ def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None, graph: GraphWa
     sources = [*names.WRENCH_SOURCES,
                *([names.CARRIAGE_WRENCH] if spec.params.carriage is not None else []),
                *([names.COLLISION_WRENCH] if collisions else []),
-               *([names.MOORING_WRENCH] if _moored(spec.params) else [])]
+               *([names.MOORING_WRENCH] if _moored(spec.params) else []),
+               *([names.MADE_WAVES_WRENCH] if made_waves else [])]
     for source in sources:
         pubs[source] = TappedPublisher(node, WrenchStamped, names.wrench_topic(spec.name, source),
                                        DIAGNOSTICS_QOS, tap, graph)

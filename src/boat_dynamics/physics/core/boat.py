@@ -108,6 +108,8 @@ def step_many(params: Sequence[BoatParams], states: Sequence[BoatState],
               ) -> list[tuple[BoatState, Forces]]:
     """Advance several boats by ``dt`` s together, one pipeline step per distinct time.
 
+    Each is alone on the sea (:meth:`.System.apart`): none feels another's waves.
+
     Returns:
         For each boat, its state at t + dt and the forces that acted during the step.
     """
@@ -116,7 +118,7 @@ def step_many(params: Sequence[BoatParams], states: Sequence[BoatState],
         by_time.setdefault(s.t, []).append(i)
     out: list = [None] * len(states)
     for members in by_time.values():
-        done = pipeline.step(System.build([params[i] for i in members]),
+        done = pipeline.step(System.build([params[i] for i in members]).apart(),
                              FleetState.stack([states[i] for i in members]),
                              FleetInputs.stack([inputs[i] for i in members]), sea, dt)
         for k, i in enumerate(members):

@@ -39,6 +39,7 @@ from boat_dynamics.physics.potential_flow.added_mass import added_mass_coriolis
 from boat_dynamics.physics.potential_flow.diffraction import excitation_wrench
 from boat_dynamics.physics.potential_flow.hull_lift import hull_lift
 from boat_dynamics.physics.potential_flow.radiation import memory_wrench
+from boat_dynamics.physics.potential_flow.wave_interaction import made_waves_wrench
 from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.constants import AIR_DENSITY
 from ocean_sim.physics.environment import Environment
@@ -135,9 +136,26 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
                                                             or system.count > 1):
         bump = _collision(system, state, contact, world)
         total = total + bump
+    made = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
+    if system.made_waves is not None:  # boats that feel each other's waves
+        made = _made_waves(system, state, rot, environment)
+        total = total + made
     return (FleetForces(buoyancy=buoy, damping=damp, drag=drag, thrust=push, rudder=steer,
                         diffraction=scattered, slamming=slam, mooring=tether, wind=blow,
-                        collision=bump, gravity=weight, total=total), normals_ref)
+                        collision=bump, made_waves=made, gravity=weight, total=total),
+            normals_ref)
+
+
+def _made_waves(system: System, state: FleetState, rot: np.ndarray,
+                environment: Environment | None) -> Wrench:
+    """(B, 3) the waves other boats make: their force and torque, body frames."""
+    ref = state.position - np.einsum("bij,bj->bi", rot, system.center_of_mass)
+    over_ground = np.einsum("bij,bj->bi", rot, state.velocity)[:, :2]
+    through = over_ground
+    if environment is not None and environment.current_speed > 0.0:
+        through = over_ground - environment.current[:2]
+    return made_waves_wrench(system.made_waves, ref[:, :2], np.arctan2(rot[:, 1, 0], rot[:, 0, 0]),
+                             over_ground, through, state.t, system.count)
 
 
 def touches_of(system: System, state: FleetState, contact: Contact, world: World) -> Touches:

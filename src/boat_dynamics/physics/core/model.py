@@ -26,7 +26,9 @@ from boat_dynamics.physics.force_models.rudder import Rudder
 from boat_dynamics.physics.force_models.wind import Windage
 from boat_dynamics.physics.potential_flow.hull_lift import HullLift
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients, hydro_key
+from boat_dynamics.physics.potential_flow.kelvin_wake import ThinShip
 from boat_dynamics.physics.potential_flow.radiation import RadiationMemory
+from boat_dynamics.physics.potential_flow.wave_interaction import MadeWavesModel
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.waves import Precision
 
@@ -91,6 +93,8 @@ class Derivation:
             with the derived added mass) holding the boat where it starts, or None: free.
         hull_lift: set ``hull_lift`` from the hull at its equilibrium and the coefficients'
             A22 (:func:`.hull_lift.trailing_sections`); needs ``memory``.
+        thin_ship: set ``thin_ship`` from the hull at its equilibrium
+            (:func:`.kelvin_wake.thin_ship`): the boat makes a wake.
     """
 
     critical_ratio: np.ndarray | None = None
@@ -102,6 +106,7 @@ class Derivation:
     windage: Windage | None = None
     mooring_period: float | None = None
     hull_lift: bool = False
+    thin_ship: bool = False
 
 
 @dataclass(frozen=True)
@@ -160,6 +165,10 @@ class BoatParams:
         windage: what the wind acts on (:mod:`.wind`), or None: no wind load.
         hull_lift: the trailing sections whose lift acts at speed (:mod:`.hull_lift`), or
             None: no hull lift.
+        made_waves: the waves the boat makes that the other boats feel
+            (:mod:`.wave_interaction`).
+        thin_ship: its hull's half-breadths for its Kelvin wake (:mod:`.kelvin_wake`), or
+            None: derived by ``pipeline.init`` when ``derive.thin_ship`` asks, else no wake.
     """
 
     hull: BoxHull
@@ -192,6 +201,8 @@ class BoatParams:
     water_velocity: WaterVelocity = "reference_point"
     windage: Windage | None = None
     hull_lift: HullLift | None = None
+    made_waves: MadeWavesModel = "none"
+    thin_ship: ThinShip | None = None
 
     @property
     def thrusters(self) -> tuple[Propulsion, ...]:
@@ -257,7 +268,9 @@ class Forces:
     ``total`` is the net wrench (the sources plus gravity) that the integrator uses;
     ``diffraction`` is zero for a boat without potential-flow coefficients, ``slamming`` for a
     hull without a slamming model or not slamming, ``mooring`` for a boat not moored, ``wind``
-    in calm air or for a boat without windage, ``collision`` for a boat touching no obstacle.
+    in calm air or for a boat without windage, ``collision`` for a boat touching no obstacle,
+    ``made_waves`` (the other boats' waves, :mod:`.wave_interaction`) for a lone boat, one
+    without coefficients, or where no other boat's waves reach.
     """
 
     buoyancy: Wrench
@@ -270,6 +283,7 @@ class Forces:
     mooring: Wrench
     wind: Wrench
     collision: Wrench
+    made_waves: Wrench
     gravity: Wrench
     total: Wrench
 

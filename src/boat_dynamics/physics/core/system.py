@@ -40,6 +40,7 @@ from boat_dynamics.physics.force_models.rudder import Rudder
 from boat_dynamics.physics.potential_flow.hull_lift import HullLift
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.potential_flow.radiation import MAX_ORDER, RadiationMemory
+from boat_dynamics.physics.potential_flow.wave_interaction import MadeWaves, made_waves_build
 from boat_dynamics.physics.world.footprints import Footprints
 from ocean_sim.physics.waves import Precision
 
@@ -393,6 +394,9 @@ class System:
         lift: the boats' trailing sections stacked ((B, 2) kg/m a22, (B, 2, 3) m positions;
             zero for a boat without hull lift), or None when no boat has any
             (:mod:`.hull_lift`).
+        made_waves: the boats that make waves and those that feel them
+            (:mod:`.wave_interaction`), or None when no boat feels another's waves (a lone
+            boat, or none making any).
     """
 
     params: tuple[BoatParams, ...]
@@ -426,6 +430,7 @@ class System:
     windage_centre: np.ndarray | None = None
     towed: tuple[int, ...] = ()
     lift: HullLift | None = None
+    made_waves: MadeWaves | None = None
 
     @cached_property
     def footprints(self) -> Footprints:
@@ -435,6 +440,14 @@ class System:
         world without obstacles never asks, and pays nothing.
         """
         return Footprints.build([hull_mesh(p).vertices for p in self.params])
+
+    def apart(self) -> System:
+        """The same boats, each on a sea of its own: none feels the waves another makes.
+
+        For boats stepped together that are separate experiments (copies of one boat in
+        :func:`.trials.sea_trials`, the environments of a vectorised Gymnasium env).
+        """
+        return self if self.made_waves is None else replace(self, made_waves=None)
 
     @classmethod
     def build(cls, params: Sequence[BoatParams]) -> System:
@@ -473,6 +486,7 @@ class System:
             **_windages(ps),
             towed=tuple(i for i, p in enumerate(ps) if p.carriage is not None),
             lift=_lifts(ps),
+            made_waves=made_waves_build(ps) if len(ps) > 1 else None,
         )
 
 

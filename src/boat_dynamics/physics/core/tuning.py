@@ -25,6 +25,7 @@ from boat_dynamics.physics.force_models.wind import Windage, windage_of_hull
 from boat_dynamics.physics.potential_flow.gap_modes import memory_of
 from boat_dynamics.physics.potential_flow.hull_lift import trailing_sections
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients, estimate
+from boat_dynamics.physics.potential_flow.kelvin_wake import thin_ship
 from ocean_sim.physics.waves import WaveField
 
 __all__ = [
@@ -204,6 +205,8 @@ def derive(params: BoatParams) -> BoatParams:
         quadratic = default_drag(params, z_eq)
     if wanted.windage is not None:
         params = replace(params, windage=_windage(params, wanted.windage, z_eq))
+    if wanted.thin_ship:
+        params = replace(params, thin_ship=thin_ship(_mesh(params), z_eq))
     if wanted.mooring_period is not None:  # anchored where it starts: pipeline.init
         params = replace(params, mooring=soft_mooring(np.full(3, np.nan), horizontal_mass(params),
                                                       wanted.mooring_period))

@@ -141,6 +141,7 @@ def sea_trials(boat: BoatSpec | Sequence[BoatSpec], sea: WaveField, orders: Sequ
                                          direction + o.heading))
               for b, o in zip(boats, orders, strict=True)]
     system, state = pipeline.start(copies, sea, 0.0)
+    system = system.apart()  # separate trials: no copy feels another's wake
     inputs = FleetInputs.stack([BoatInputs(throttle=o.throttle, rudder=o.rudder)
                                 for o in orders])
     samples: list[tuple] = []

@@ -43,6 +43,10 @@ from boat_dynamics.physics.potential_flow.hydro import (
     find_coefficients,
     load_coefficients,
 )
+from boat_dynamics.physics.potential_flow.wave_interaction import (
+    MADE_WAVES_MODELS,
+    MadeWavesModel,
+)
 from boat_dynamics.physics.scenario.models import (
     buoyancy_block,
     control_block,
@@ -295,11 +299,23 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
                             "must be zero (or absent) with hydrodynamics.radiation cummins, "
                             "which takes the added mass from the coefficients; or choose "
                             "radiation: resonance")
-    return replace(params, hydro=coefficients, derive=Derivation(
+    made = _made_waves(d.get("hydrodynamics"), f"{key}.hydrodynamics")
+    return replace(params, hydro=coefficients, made_waves=made, derive=Derivation(
         critical_ratio=ratio, quadratic="quadratic" not in dd,
         added_mass=model == "resonance" and "added_mass" not in d,
         radiation_damping=radiation, memory=model == "cummins", estimate=missing,
-        hull_lift=_hull_lift(d.get("hydrodynamics"), f"{key}.hydrodynamics", model)))
+        hull_lift=_hull_lift(d.get("hydrodynamics"), f"{key}.hydrodynamics", model),
+        thin_ship=made in ("all", "wake")))
+
+
+def _made_waves(raw: Any, key: str) -> MadeWavesModel:
+    """``hydrodynamics.made_waves``: the waves the boat makes that the others feel.
+
+    :mod:`.wave_interaction`: its Kelvin wake (``wake``; ``all`` is every kind modelled) or
+    ``none``. Only boats with coefficients feel them; a boat without makes them all the same.
+    """
+    d = {} if raw is None else mapping(raw, key)
+    return choice(d, "made_waves", key, "all", MADE_WAVES_MODELS)  # type: ignore[return-value]
 
 
 def _hull_lift(raw: Any, key: str, model: RadiationModel | None) -> bool:
@@ -515,7 +531,7 @@ def _hydrodynamics(raw: Any, key: str, base_dir: Path, params: BoatParams, depth
         the hull's key when its coefficients are to be estimated.
     """
     d = mapping(raw, key)
-    only(d, key, ("coefficients", "radiation", "hull_lift"))
+    only(d, key, ("coefficients", "radiation", "hull_lift", "made_waves"))
     mesh = isinstance(params.buoyancy, MeshBuoyancy)
     describe(f"{key}.coefficients", None, "a .npz coefficient file (boatsim hydro; relative: "
              "to the scenario's folder), auto: the shipped or hydro/ file of this hull (or the "

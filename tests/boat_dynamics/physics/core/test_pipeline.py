@@ -61,7 +61,7 @@ def test_a_mixed_fleet_stepped_together_equals_each_boat_alone():
     sc = fleet_scenario()
     params = [b.params for b in sc.boats]
     inputs = commands(len(params))
-    fleet = System.build(params)
+    fleet = System.build(params).apart()  # no boat feels another's wake: each as if alone
     # boats 0, 1 and 7-11 share a code path (control modes apply after the step; 11 has fewer
     # triangles); 2-6 and 12 (the seed notes' hydrostatic pressure) do not
     assert sorted(g.index.tolist() for g in fleet.groups) == [[0, 1, 7, 8, 9, 10, 11], [2],
