@@ -16,14 +16,18 @@ vertices on world-fixed points, coloured from trough to crest.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from boat_dynamics.physics.body.hull import box_mesh
 from boat_dynamics.physics.core.model import BoatParams
+from boat_dynamics.physics.core.tuning import equilibrium_height
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.potential_flow.kelvin_wake import ThinShip, thin_ship
+from boat_dynamics.physics.potential_flow.wave_interaction import made_waves_elevation
+from ocean_sim.physics.constants import GRAVITY
 from ocean_sim.physics.waves import WaveField, sample_surface
 
 __all__ = ["DEFAULT_SOURCES", "POSE_PERIOD", "HullShape", "Scene", "hull_shape", "sea_mesh"]
@@ -44,6 +48,8 @@ _PATH_STEP = 0.2
 #: whole path (``world/paths/<boat>``) every _PATH_WHOLE_PERIOD. Redrawing the whole path every
 #: second logged 60 kB/s once it was long (O(n^2) over a run), which a live viewer must ingest.
 _PATH_POINTS = 5000
+#: s of simulation time between the two poses a boat's velocity (its wake's) is taken from.
+_VELOCITY_SPAN = 0.2
 _PATH_PERIOD = 1.0
 _PATH_WHOLE_PERIOD = 30.0
 #: visualization_msgs/Marker types drawn (:meth:`Scene.markers`).
@@ -71,6 +77,9 @@ class HullShape:
             the hull).
         force_scale: m of arrow per N of force.
         arrow_radius: m, the arrows' thickness (3 % of the hull's length).
+        ship: the hull below its waterline, whose Kelvin wake is drawn
+            (:mod:`boat_dynamics.physics.potential_flow.kelvin_wake`), or None: no wake (a
+            boat that makes none, ``hydrodynamics.made_waves``).
     """
 
     vertices: np.ndarray
@@ -78,6 +87,7 @@ class HullShape:
     arrow_origin: np.ndarray
     force_scale: float
     arrow_radius: float
+    ship: ThinShip | None = None
 
 
 def hull_shape(params: BoatParams | None) -> HullShape:
@@ -87,10 +97,12 @@ def hull_shape(params: BoatParams | None) -> HullShape:
     a twentieth of its weight when it has none. ``params`` None: the default 4 x 2 x 1
     m box of 4100 kg, 2 kN (a boat the scenario given to the viewer does not have).
     """
+    ship = None
     if params is None:
         from boat_dynamics.physics.body.hull import BoxHull
 
         mesh, com, length, thrust = box_mesh(BoxHull(4.0, 2.0, 1.0)), np.zeros(3), 4.0, 2000.0
+        ship = thin_ship(mesh, 0.0)  # the default box floats at half its height
     else:
         buoyancy = params.buoyancy
         mesh = buoyancy.mesh if isinstance(buoyancy, MeshBuoyancy) else box_mesh(params.hull)
@@ -98,12 +110,16 @@ def hull_shape(params: BoatParams | None) -> HullShape:
         thrust = sum(float(np.max(t.max_thrust)) for t in params.thrusters)
         if thrust <= 0.0:
             thrust = params.mass * params.gravity / 20.0
+        if params.made_waves in ("all", "wake"):
+            ship = params.thin_ship or thin_ship(mesh, equilibrium_height(params))
     vertices = np.asarray(mesh.vertices, dtype=float)
     origin = np.array([com[0], com[1], vertices[:, 2].max() + 0.1 * length])
-    return HullShape(vertices, np.asarray(mesh.faces), origin, length / thrust, 0.03 * length)
+    return HullShape(vertices, np.asarray(mesh.faces), origin, length / thrust, 0.03 * length,
+                     ship)
 
 
-def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resolution: float
+def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resolution: float,
+             made: Callable[[np.ndarray], np.ndarray] | None = None
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The sea surface on a square grid around ``centre``.
 
@@ -117,6 +133,9 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
         centre: (2,) m, world x, y.
         size: m, side of the square.
         resolution: m between grid points.
+        made: (P, 2) m world points -> (P,) m, the waves the boats make, added to the sea's
+            (:func:`~boat_dynamics.physics.potential_flow.wave_interaction.made_waves_elevation`),
+            or None: none.
 
     Returns:
         vertices (V, 3) m world, triangles (T, 3) indices, colours (V, 3) uint8.
@@ -130,6 +149,8 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
     gx, gy = np.meshgrid(ticks_x, ticks_y, indexing="ij")
     xy = np.column_stack([gx.ravel(), gy.ravel()])
     heights = sample_surface(sea, xy, t).heights
+    if made is not None:
+        heights = heights + made(xy)
     idx = np.arange(n * n).reshape(n, n)
     a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:]
     triangles = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d.ravel()], 1)])
@@ -167,6 +188,7 @@ class Scene:
                                                                   sea_period)
         self._boats: dict[str, int] = {}  # name -> colour index, once drawn
         self._positions: dict[str, np.ndarray] = {}  # the latest, (3,) m
+        self._moving: dict[str, tuple[float, np.ndarray, np.ndarray]] = {}  # t, p, velocity
         self._paths: dict[str, list[np.ndarray]] = {}
         self._next_path: dict[str, float] = {}
         # what is drawn at most every so often -> the next time it is due, s (simulation)
@@ -268,6 +290,7 @@ class Scene:
         self._boat(name)
         p = np.asarray(list(position), dtype=float)
         self._positions[name] = p
+        self._track(name, t, p)
         if not self._due(("pose", name), t, self._pose_period):
             return
         self._at(t)
@@ -287,6 +310,23 @@ class Scene:
             if whole:
                 self._next_path_whole = t + _PATH_WHOLE_PERIOD
             self._log_paths(whole)
+
+    def _track(self, name: str, t: float, p: np.ndarray) -> None:
+        """A boat's horizontal velocity (its wake's), from its poses _VELOCITY_SPAN s apart."""
+        last = self._moving.get(name)
+        if last is None or t < last[0]:  # the first pose, or time went back (a new run)
+            self._moving[name] = (t, p, np.zeros(2))
+        elif t - last[0] >= _VELOCITY_SPAN:
+            self._moving[name] = (t, p, (p[:2] - last[1][:2]) / (t - last[0]))
+
+    def _made_waves(self, xy: np.ndarray) -> np.ndarray:
+        """(P,) m, the boats' wakes at world points ``xy`` (P, 2), as the boats move now."""
+        names = [n for n in self._moving if self._boat(n).ship is not None]
+        if not names:
+            return np.zeros(xy.shape[0])
+        return made_waves_elevation([self._boat(n).ship for n in names],
+                                    np.array([self._positions[n][:2] for n in names]),
+                                    np.array([self._moving[n][2] for n in names]), xy, GRAVITY)
 
     def _log_paths(self, whole: bool = True) -> None:
         """Each boat's path: the whole of it, or its tail since the whole was last drawn."""
@@ -342,7 +382,8 @@ class Scene:
             centre, size = (low + high) / 2, max(self._sea_size, float(np.max(high - low)) + 20)
         else:
             centre, size = np.zeros(2), self._sea_size
-        vertices, triangles, colours = sea_mesh(field, t, centre, size, self._sea_resolution)
+        vertices, triangles, colours = sea_mesh(field, t, centre, size, self._sea_resolution,
+                                                self._made_waves)
         self._at(t)
         if len(triangles) != self._sea_triangles:  # the grid's shape changed (or the first)
             self._sea_triangles = len(triangles)

@@ -163,3 +163,31 @@ def test_the_worlds_obstacles_are_drawn_once_from_their_markers():
     pile = drawn["world/obstacles/obstacles/1"][1]
     np.testing.assert_allclose(_values(pile.centers), [[3.0, 4.0, 0.0]])  # from -2 to 2 m
     np.testing.assert_allclose(_values(pile.radii), [0.3], rtol=1e-6)
+
+
+@pytest.mark.parametrize("made", ["all", "none"])
+def test_the_sea_drawn_carries_the_wake_of_a_boat_at_speed(made):
+    """A default box at 3 m/s along +x on calm water: the sea drawn behind it is its Kelvin
+    wake (kelvin_wake.wake_elevation, from the poses' velocity) inside the 19.47 deg wedge,
+    flat ahead of it and outside the wedge; flat everywhere for a boat that makes no waves."""
+    from boat_dynamics.physics.potential_flow.kelvin_wake import wake_elevation
+
+    spec = parse_scenario({"boats": [{"hydrodynamics": {"made_waves": made}}]}).boats[0]
+    shape = hull_shape(spec.params)
+    assert (shape.ship is None) == (made == "none")
+    scene = Drawn({"": shape}, sea_size=80.0, sea_resolution=1.0, sea_period=1.0)
+    for k in range(51):  # 5 s at 10 Hz
+        t = 0.1 * k
+        scene.pose(t, "", (3.0 * t, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+    scene.sea(5.0, WaveField())
+    vertices = _values(scene.at("world/sea")[-1][1].vertex_positions)
+    x, y, z = vertices[:, 0] - 15.0, vertices[:, 1], vertices[:, 2]
+    inside = (x < -10.0) & (np.abs(y) < -x / np.sqrt(8.0) - 1.0)
+    outside = (x > 0.0) | (np.abs(y) > -x / np.sqrt(8.0) + 1.0)
+    assert not z[outside].any()
+    if made == "none":
+        assert not z.any()
+        return
+    expected = wake_elevation(shape.ship, 3.0, np.array([15.0, 0.0]), 0.0, vertices[:, :2])
+    np.testing.assert_allclose(z, expected, atol=1e-5)  # drawn in float32
+    assert np.abs(z[inside]).max() > 0.1  # decimetres behind a 4 m box at Fn 0.48
