@@ -74,7 +74,8 @@ FILE_SECONDS = {
     "test_view.py": 37, "test_golden.py": 25, "test_ocean_node.py": 25,
     "test_thrusters.py": 20, "test_fuzz.py": 13, "test_world.py": 12,
     "test_wrench_topics.py": 10, "test_fleet_state.py": 8, "test_hostile_inputs.py": 7,
-    "test_current_and_wind.py": 5, "test_lockstep_client.py": 4, "test_benchmarks.py": 1,
+    "test_wake_crossing.py": 18, "test_current_and_wind.py": 5, "test_lockstep_client.py": 4,
+    "test_benchmarks.py": 1,
 }
 
 
