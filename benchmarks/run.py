@@ -499,7 +499,7 @@ def main() -> None:
     """Run every benchmark."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--run-seconds", type=float, default=20.0)
-    parser.add_argument("--only", choices=("instructions", "waves", "fft", "boat", "run",
+    parser.add_argument("--only", choices=("instructions", "waves", "fft", "wakes", "boat", "run",
                                            "phases", "scale"),
                         help="one group only")
     args = parser.parse_args()
@@ -509,6 +509,10 @@ def main() -> None:
         from fft_ocean import bench_fft
 
         bench_fft()
+    if args.only in (None, "wakes"):
+        from wave_making import bench_wave_making
+
+        bench_wave_making()
     if args.only in (None, "boat"):
         bench_boat_step()
     if args.only in (None, "run"):

@@ -44,8 +44,8 @@ from boat_dynamics.physics.body.hull import HullMesh
 from boat_dynamics.physics.potential_flow.made_waves import LocalWaves
 from ocean_sim.physics.constants import GRAVITY
 
-__all__ = ["SHORTEST_WAVE", "ThinShip", "amplitude", "michell_resistance", "thin_ship",
-           "wake_elevation", "wake_waves"]
+__all__ = ["SHORTEST_WAVE", "ThinShip", "amplitude", "michell_resistance", "pair_waves",
+           "thin_ship", "wake_elevation", "wake_waves"]
 
 #: m, the shortest wave of a wake kept (shorter ones, the divergent waves near the track,
 #: are left out; a hull moving slower than sqrt(g SHORTEST_WAVE / 2 pi), 0.88 m/s, leaves
@@ -145,18 +145,18 @@ def _transform(ship: ThinShip, k: np.ndarray, kx: np.ndarray) -> np.ndarray:
     return np.einsum("pi,ij,pj->p", along, ship.half_breadth, depth)
 
 
-def amplitude(ship: ThinShip, theta: np.ndarray, speed: float,
+def amplitude(ship: ThinShip, theta: np.ndarray, speed: float | np.ndarray,
               gravity: float = GRAVITY) -> np.ndarray:
     """(T,) complex, m/rad: Michell's amplitude function A(theta) (module docstring).
 
     Args:
         ship: the hull.
         theta: (T,) rad, in (-pi/2, pi/2): the waves' angle to the course.
-        speed: U, m/s, > 0.
+        speed: U, m/s, > 0; or (T,), one per angle.
         gravity: g, m/s^2.
     """
     theta = np.asarray(theta, dtype=float)
-    k0 = gravity / speed**2
+    k0 = gravity / np.asarray(speed, dtype=float) ** 2
     sec = 1.0 / np.cos(theta)
     k = k0 * sec**2
     return -2j * k0**2 * sec**4 / np.pi * _transform(ship, k, k * np.cos(theta))
@@ -177,8 +177,10 @@ def michell_resistance(ship: ThinShip, speed: float, density: float,
                  * np.sum(np.abs(a) ** 2 * np.cos(theta) ** 3) * 2.0 * top / nodes)
 
 
-def _branches(x: np.ndarray, y: np.ndarray, k0: float, length: float):
+def _branches(x: np.ndarray, y: np.ndarray, k0: float | np.ndarray, length: float):
     """The two stationary-phase waves at P points (x, y), hull frame (x ahead, m).
+
+    ``k0``: g / U^2, rad/m, or (P,), one per point (wakes of hulls at several speeds).
 
     Returns:
         theta (2, P) rad, k (2, P) rad/m, complex factor (2, P) sqrt(2 pi / |Phi''|) times
@@ -218,12 +220,32 @@ def _hull_frame(source_xy: np.ndarray, course: float, xy: np.ndarray) -> tuple:
 def _waves(ship: ThinShip, speed: float, source_xy, course: float, xy, gravity: float):
     """The angles (2, P) rad, k (2, P) rad/m and complex amplitudes (2, P) m at ``xy``."""
     x, y = _hull_frame(source_xy, course, xy)
+    return pair_waves(ship, x, y, np.full(x.shape, float(speed)), gravity)
+
+
+def pair_waves(ship: ThinShip, x: np.ndarray, y: np.ndarray, speed: np.ndarray,
+               gravity: float = GRAVITY) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The wake's two waves at P points, each in the frame of a hull of this shape.
+
+    Args:
+        ship: the hull (shared by the P sources).
+        x: (P,) m, each point ahead of its source along the source's course.
+        y: (P,) m, to port of it.
+        speed: (P,) m/s, > 0, each source's speed through the water.
+        gravity: g, m/s^2.
+
+    Returns:
+        (2, P) rad, the waves' angles to the course (transverse, then divergent); (2, P)
+        rad/m, their wavenumbers; (2, P) complex m, their amplitudes and phases at the
+        points (zero: no wave).
+    """
     k0 = gravity / speed**2
     theta, k, factor = _branches(x, y, k0, ship.length)
     a = np.zeros(theta.shape, dtype=complex)
     live = factor != 0.0
     if live.any():
-        a[live] = amplitude(ship, theta[live], speed, gravity) * factor[live]
+        u = np.broadcast_to(speed, theta.shape)[live]
+        a[live] = amplitude(ship, theta[live], u, gravity) * factor[live]
     return theta, k, a
 
 

@@ -23,13 +23,13 @@ from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.potential_flow.kelvin_wake import (
     SHORTEST_WAVE,
     ThinShip,
-    _waves,
+    pair_waves,
     wake_elevation,
 )
-from boat_dynamics.physics.potential_flow.made_waves import LocalWaves, local_wrench, stacked
+from boat_dynamics.physics.potential_flow.made_waves import LocalWaves, local_wrench
 
-__all__ = ["MADE_WAVES_MODELS", "MadeWaves", "MadeWavesModel", "Source", "made_waves_build",
-           "made_waves_elevation", "made_waves_wrench"]
+__all__ = ["MADE_WAVES_MODELS", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
+           "made_waves_build", "made_waves_elevation", "made_waves_wrench"]
 
 #: What waves a boat makes that the others feel: ``wake``, its Kelvin wake at speed;
 #: ``none``. (``all``: every kind this version models.)
@@ -37,19 +37,10 @@ MadeWavesModel = Literal["all", "wake", "none"]
 MADE_WAVES_MODELS: tuple[MadeWavesModel, ...] = get_args(MadeWavesModel)
 
 
-@dataclass(frozen=True)
-class Source:
-    """A boat that makes waves.
-
-    Attributes:
-        index: its place in the fleet.
-        ship: its thin-ship hull (:func:`.kelvin_wake.thin_ship`), for its wake.
-        gravity: g, m/s^2.
-    """
-
-    index: int
-    ship: ThinShip
-    gravity: float
+#: How far behind its hull a wake is felt, in hull lengths (40: 160 m behind a 4 m boat,
+#: where its transverse waves have a third of their height 16 m behind it). A bound on the
+#: cost, which grows with the pairs of boats within reach of each other.
+WAKE_REACH = 40.0
 
 
 @dataclass(frozen=True)
@@ -57,16 +48,19 @@ class MadeWaves:
     """The fleet's wave makers and the boats that feel them (:attr:`System.made_waves`).
 
     Attributes:
-        sources: the boats that make waves.
-        receivers: (R,) int, the boats with coefficients, which feel them.
+        ships: the wake makers' hulls, each with (S,) int, the fleet places of the boats
+            that have it (boats sharing parameters share their thin ship).
+        receivers: (R,) int, the boats with coefficients, which feel the waves.
         hydro: their coefficients, one per receiver.
         min_wavelength: (R,) m, their wave filters.
+        gravity: g, m/s^2.
     """
 
-    sources: tuple[Source, ...]
+    ships: tuple[tuple[ThinShip, np.ndarray], ...]
     receivers: np.ndarray
     hydro: tuple[HydroCoefficients, ...]
     min_wavelength: np.ndarray
+    gravity: float
 
 
 def made_waves_build(params: Sequence) -> MadeWaves | None:
@@ -75,14 +69,19 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
     Args:
         params: the boats' :class:`~boat_dynamics.physics.core.model.BoatParams`.
     """
-    sources = tuple(Source(i, p.thin_ship, p.gravity) for i, p in enumerate(params)
-                    if p.made_waves in ("all", "wake") and p.thin_ship is not None)
+    makers: dict[int, tuple[ThinShip, list[int]]] = {}
+    for i, p in enumerate(params):
+        if p.made_waves in ("all", "wake") and p.thin_ship is not None:
+            makers.setdefault(id(p.thin_ship), (p.thin_ship, []))[1].append(i)
+    sources = [i for _, members in makers.values() for i in members]
     receivers = [i for i, p in enumerate(params) if p.hydro is not None]
-    if not sources or not any(r != s.index for r in receivers for s in sources):
+    if not any(r != s for r in receivers for s in sources):
         return None
-    return MadeWaves(sources, np.array(receivers, dtype=np.intp),
+    return MadeWaves(tuple((ship, np.array(m, dtype=np.intp)) for ship, m in makers.values()),
+                     np.array(receivers, dtype=np.intp),
                      tuple(params[i].hydro for i in receivers),
-                     np.array([params[i].min_wavelength for i in receivers], dtype=float))
+                     np.array([params[i].min_wavelength for i in receivers], dtype=float),
+                     float(params[0].gravity))
 
 
 def _courses(velocity_world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -91,26 +90,39 @@ def _courses(velocity_world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             np.arctan2(velocity_world[:, 1], velocity_world[:, 0]))
 
 
-def _wakes_at(made: MadeWaves, reference_xy: np.ndarray, through_water: np.ndarray, t: float
-              ) -> list[list[LocalWaves]]:
-    """Per receiver, the local waves of every other source's wake at its reference point."""
+def _wakes_at(made: MadeWaves, reference_xy: np.ndarray, through_water: np.ndarray
+              ) -> tuple[np.ndarray, ...] | None:
+    """Every wake wave at every receiver, one pass per hull shape over the pairs in reach.
+
+    Returns:
+        (N,) each: the receiver's row in ``made.receivers``, amplitude m, omega rad/s, k
+        rad/m, direction rad (world), phase rad at the receiver; None: no wave anywhere.
+    """
     speed, course = _courses(through_water)
     at = reference_xy[made.receivers]
-    out: list[list[LocalWaves]] = [[] for _ in made.receivers]
-    for s in made.sources:
-        u = float(speed[s.index])
-        if 2.0 * math.pi * u * u / s.gravity < SHORTEST_WAVE:
-            continue  # too slow to leave a wake
-        theta, k, a = _waves(s.ship, u, reference_xy[s.index], float(course[s.index]), at,
-                             s.gravity)
-        for j, r in enumerate(made.receivers):
-            live = (a[:, j] != 0.0) & (2.0 * math.pi / k[:, j] >= made.min_wavelength[j])
-            if r == s.index or not live.any():
-                continue
-            out[j].append(LocalWaves(at[j], t, np.abs(a[live, j]),
-                                     k[live, j] * u * np.cos(theta[live, j]), k[live, j],
-                                     course[s.index] + theta[live, j], np.angle(a[live, j])))
-    return out
+    found = []
+    for ship, members in made.ships:
+        fast = members[2.0 * math.pi * speed[members] ** 2 / made.gravity >= SHORTEST_WAVE]
+        if fast.shape[0] == 0:
+            continue
+        d = at[None, :, :] - reference_xy[fast][:, None, :]  # (S, R, 2)
+        c, s = np.cos(course[fast])[:, None], np.sin(course[fast])[:, None]
+        x, y = d[..., 0] * c + d[..., 1] * s, d[..., 1] * c - d[..., 0] * s
+        near = ((x < -0.5 * ship.length) & (8.0 * y * y <= x * x)
+                & (x > -WAKE_REACH * ship.length)
+                & (fast[:, None] != made.receivers[None, :]))
+        si, rj = np.nonzero(near)
+        if si.shape[0] == 0:
+            continue
+        u = speed[fast][si]
+        theta, k, a = pair_waves(ship, x[si, rj], y[si, rj], u, made.gravity)
+        live = (a != 0.0) & (2.0 * math.pi / k >= made.min_wavelength[rj][None, :])
+        b, p = np.nonzero(live)
+        found.append((rj[p], np.abs(a[b, p]), k[b, p] * u[p] * np.cos(theta[b, p]), k[b, p],
+                      course[fast][si[p]] + theta[b, p], np.angle(a[b, p])))
+    if not found:
+        return None
+    return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
 
 
 def made_waves_wrench(made: MadeWaves, reference_xy: np.ndarray, heading: np.ndarray,
@@ -128,11 +140,15 @@ def made_waves_wrench(made: MadeWaves, reference_xy: np.ndarray, heading: np.nda
         count: B.
     """
     force, torque = np.zeros((count, 3)), np.zeros((count, 3))
-    for j, waves in enumerate(_wakes_at(made, reference_xy, through_water, t)):
-        if not waves:
-            continue
+    waves = _wakes_at(made, reference_xy, through_water)
+    if waves is None:
+        return Wrench(force, torque)
+    rows, amplitude, omega, k, direction, phase = waves
+    for j in np.unique(rows):
+        mine = rows == j
         r = made.receivers[j]
-        local = waves[0] if len(waves) == 1 else stacked(waves)
+        local = LocalWaves(reference_xy[r], t, amplitude[mine], omega[mine], k[mine],
+                           direction[mine], phase[mine])
         scattered, incident = local_wrench(made.hydro[j], local, float(heading[r]),
                                            velocity_world[r])
         total = scattered + incident

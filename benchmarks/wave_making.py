@@ -1,0 +1,57 @@
+"""The cost of boats that make waves (`make bench`, `--only wakes`): prints figures, asserts
+nothing.
+
+Fleets of 2 and 10 default boxes at 3 m/s in a column 20 m apart (each in the wakes of those
+ahead) on calm water, stepped with `made_waves: all` and `none`: the difference per step,
+and per boat pair (a source and a receiver). Then the wake's elevation per point and boat (the
+view draws it on its sea).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from timing import best_of
+
+from boat_dynamics.physics.core import pipeline
+from boat_dynamics.physics.core.boat import BoatInputs
+from boat_dynamics.physics.core.system import FleetInputs
+from boat_dynamics.physics.potential_flow.kelvin_wake import wake_elevation
+from boat_dynamics.physics.scenario import parse_scenario
+
+__all__ = ["bench_wave_making"]
+
+
+def _step_cost(count: int, made: str) -> float:
+    """Seconds per step of ``count`` boats in a column at 3 m/s."""
+    sc = parse_scenario({"boats": [
+        {"name": f"b{i}", "hydrodynamics": {"made_waves": made},
+         "initial_pose": {"position": [-20.0 * i, 2.0 * (i % 2), 0.0],
+                          "velocity": [3.0, 0.0, 0.0]}} for i in range(count)]})
+    system, state = pipeline.start(sc.boats, sc.sea)
+    inputs = FleetInputs.stack([BoatInputs(1.0, 0.0)] * count)
+    held = [state]
+
+    def steps():
+        s = held[0]
+        for _ in range(20):
+            s = pipeline.step(system, s, inputs, sc.sea, 0.01).state
+        held[0] = s
+
+    steps()
+    return best_of(steps, 5) / 20
+
+
+def bench_wave_making() -> None:
+    """Print the made waves' cost per step and per boat pair, and the wake's per point."""
+    print("== Boats that make waves: default boxes at 3 m/s in a column, calm water")
+    for count in (2, 10):
+        on, off = _step_cost(count, "all"), _step_cost(count, "none")
+        pairs = count * (count - 1)
+        print(f"  {count:2d} boats: step {off * 1e6:8.1f} us without, {on * 1e6:8.1f} us with "
+              f"made waves: {(on - off) * 1e6 / pairs:6.1f} us per boat pair ({pairs} pairs)")
+    sc = pipeline.init_scenario(parse_scenario({"boats": [{}]}))
+    ship = sc.boats[0].params.thin_ship
+    xy = np.random.default_rng(2).uniform((-80.0, -30.0), (0.0, 30.0), (20000, 2))
+    per_point = best_of(lambda: wake_elevation(ship, 3.0, np.zeros(2), 0.0, xy), 5) / len(xy)
+    print(f"  a wake's elevation (the view): {per_point * 1e6:6.2f} us per point and boat "
+          "(half the points inside its wedge)")
