@@ -92,7 +92,15 @@ def _boats() -> list[tuple[str, str]]:
     scenario on flat water (calm.yaml) adds no case: each case drives its boat in calm water
     as its reference; its boats must be among those driven.
     """
-    out, seen, calm = [], set(), []
+    return [(scenario, name) for scenario, name, sea in _cases() if sea == "own"]
+
+
+def _cases() -> list[tuple[str, str, str]]:
+    """(scenario, boat name, sea) of each drive: :func:`_boats`' in their own seas, and each
+    distinct boat (at its step rate and water depth) once in its rough sea (:func:`rough_sea`
+    depends on nothing else: wake_crossing.yaml's two boats are default.yaml's and
+    multi_boat.yaml's, on an FFT sea of their own)."""
+    out, seen, calm, rough = [], set(), [], set()
     for path in sorted(SCENARIOS.glob("*.yaml")):
         raw, sc = yaml.safe_load(path.read_text()), load_scenario(path)
         boats = [b for b in sc.boats if b.kind == "boat"]  # not world.buoys
@@ -104,7 +112,10 @@ def _boats() -> list[tuple[str, str]]:
                 continue
             if (boat, sc.simulation.rate_hz, repr(sc.sea)) not in seen:
                 seen.add((boat, sc.simulation.rate_hz, repr(sc.sea)))
-                out.append((path.name, b.name))
+                out.append((path.name, b.name, "own"))
+                if (boat, sc.simulation.rate_hz, sc.sea.depth) not in rough:
+                    rough.add((boat, sc.simulation.rate_hz, sc.sea.depth))
+                    out.append((path.name, b.name, "rough"))
     driven = {boat for boat, _, _ in seen}
     missing = [(s, n) for s, n, boat in calm if boat not in driven]
     assert not missing, f"boats only ever on flat water, never driven through waves: {missing}"
@@ -209,8 +220,7 @@ def _calm_of(scenario: str, name: str) -> tuple[float, float, list[str]]:
 # Simulation time decides these runs; the wall time (60-250 s each on a busy 2-core machine)
 # is bounded only against a hang, above pyproject's 300 s for ordinary tests.
 @pytest.mark.timeout(1200)
-@pytest.mark.parametrize("sea_name", ["own", "rough"])
-@pytest.mark.parametrize(("scenario", "name"), _boats())
+@pytest.mark.parametrize(("scenario", "name", "sea_name"), _cases())
 def test_a_shipped_boat_driven_through_waves_behaves_like_a_boat(scenario, name, sea_name):
     boat, sc = _boat(scenario, name)
     speed, rate, calm_problems = _calm_of(scenario, name)
