@@ -69,9 +69,10 @@ def main(path: str) -> None:
 
     sc, runs = scenario(), {made: drive(scenario(made)) for made in ("all", "none")}
     run = runs["all"]
-    i = int(np.argmax(np.abs(run["fz"])))  # the work boat deepest in the wake
+    i = int(np.argmin(np.abs(run["xy"][:, 1, 1])))  # the work boat on the launch's track
     launch = run["xy"][i, 0]
-    gx, gy = np.meshgrid(np.linspace(launch[0] - 60, launch[0] + 10, 281),
+    west = min(launch[0] - 60.0, float(run["xy"][:, 1, 0].min()) - 10.0)
+    gx, gy = np.meshgrid(np.linspace(west, launch[0] + 10, 4 * int(launch[0] + 10 - west) + 1),
                          np.linspace(-30, 30, 241), indexing="xy")
     xy = np.column_stack([gx.ravel(), gy.ravel()])
     sea = sample_surface(sc.sea, xy, run["t"][i]).heights
@@ -85,6 +86,11 @@ def main(path: str) -> None:
     for b, colour in ((0, "k"), (1, "tab:orange")):
         ax.plot(run["xy"][: i + 1, b, 0], run["xy"][: i + 1, b, 1], colour, lw=1.5,
                 label=sc.boats[b].name)
+    ax.plot(run["xy"][i:, 1, 0], run["xy"][i:, 1, 1], "tab:orange", lw=0.8, ls=":",
+            label="crosser, later")
+    alone = runs["none"]["xy"][:, 1]
+    ax.plot(alone[:, 0], alone[:, 1], "tab:orange", lw=0.8, ls="--",
+            label="crosser, launch making no waves")
     edge = np.array([[0.0, 0.0], [-60.0, 60.0 / math.sqrt(8.0)]])
     for sign in (1, -1):
         ax.plot(launch[0] + edge[:, 0], launch[1] + sign * edge[:, 1], "k:", lw=0.8)
