@@ -26,4 +26,4 @@ def test_the_work_boat_feels_the_launchs_wake_only_once_it_is_in_it(boatsim, tmp
         assert not rows[rows[:, 0] < 12.5, 1].any()
         assert np.abs(rows[rows[:, 0] > 14.0, 1]).max() > 1000.0
     (_, field), = msgs["/ocean/wave_field"][:1]
-    assert len(field.components) == 48  # the 8 x 8 tile's (N - 1)^2 wavenumbers but k = 0
+    assert len(field.components) == 24  # the 6 x 6 tile's (N - 1)^2 wavenumbers but k = 0
