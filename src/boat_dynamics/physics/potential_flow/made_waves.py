@@ -20,7 +20,7 @@ import numpy as np
 
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 
-__all__ = ["LocalWaves", "local_wrench", "stacked"]
+__all__ = ["LocalWaves", "local_wrench", "local_wrenches", "stacked"]
 
 
 @dataclass(frozen=True)
@@ -89,7 +89,7 @@ def local_wrench(hydro: HydroCoefficients, waves: LocalWaves, heading: float,
 
     The transfer functions of ``hydro`` (per metre of amplitude, about the centre of mass,
     body axes) at each wave's encounter frequency, as for the sea's own components
-    (:func:`.diffraction.excitation_wrench`).
+    (:func:`.diffraction.excitation_wrench`); :func:`local_wrenches` of one boat.
 
     Args:
         hydro: the receiving hull's coefficients.
@@ -101,18 +101,56 @@ def local_wrench(hydro: HydroCoefficients, waves: LocalWaves, heading: float,
         (6,) diffraction and (6,) Froude-Krylov wrench, force (N) then torque (N m), body
         frame. Zeros when there are no waves.
     """
-    if waves.count == 0:
-        return np.zeros(6), np.zeros(6)
-    from boat_dynamics.physics.potential_flow.excitation_kernel import excitation_f64
-
-    dx, dy = np.cos(waves.direction), np.sin(waves.direction)
-    kd = np.ascontiguousarray(np.stack([waves.wavenumber * dx, waves.wavenumber * dy]))
-    xy = np.ascontiguousarray(np.asarray(waves.at, dtype=float).reshape(1, 2))
-    time_phase = np.mod(waves.phase - xy[0] @ kd, 2.0 * np.pi)
-    v = np.ascontiguousarray(np.asarray(velocity, dtype=float).reshape(1, 2))
-    common = (waves.amplitude, waves.omega, waves.wavenumber, dx, dy, waves.direction, xy, kd,
-              time_phase, np.array([float(heading)]), v)
-    scattered = excitation_f64(hydro.omega, hydro.directions, hydro.diffraction, *common, True)
-    incident = excitation_f64(hydro.omega, hydro.directions, hydro.froude_krylov, *common,
-                              False)
+    scattered, incident = local_wrenches(
+        hydro, np.zeros(waves.count, dtype=np.intp), np.array([float(heading)]),
+        np.asarray(velocity, dtype=float).reshape(1, 2), waves.amplitude, waves.omega,
+        waves.wavenumber, waves.direction, waves.phase)
     return scattered[0], incident[0]
+
+
+def local_wrenches(hydro: HydroCoefficients, owner: np.ndarray, heading: np.ndarray,
+                   velocity: np.ndarray, amplitude: np.ndarray, omega: np.ndarray,
+                   wavenumber: np.ndarray, direction: np.ndarray, phase: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The diffraction and Froude-Krylov wrenches of N plane waves on G boats of one hull.
+
+    Each wave acts on its ``owner`` boat, its phase taken at that boat's reference point:
+    sum Re[a X e^{i phase}], X the transfer function at (omega_e, beta - psi), omega_e =
+    omega - k D . V its encounter frequency (a wave the hull overtakes, omega_e < 0: the
+    wave of |omega_e| from the opposite side, phase reversed; Lewandowski 2004, sec. 3.4),
+    the Froude-Krylov one at omega (:func:`.diffraction.excitation_wrench`'s rules).
+
+    Args:
+        hydro: the hulls' coefficients.
+        owner: (N,) int in 0..G-1.
+        heading: (G,) rad, the boats' yaws.
+        velocity: (G, 2) m/s, their horizontal velocities over ground, world frame.
+        amplitude: (N,) m.
+        omega: (N,) rad/s, over ground.
+        wavenumber: (N,) rad/m.
+        direction: (N,) rad, world, toward which each travels.
+        phase: (N,) rad, each one's phase at its owner's reference point now.
+
+    Returns:
+        (G, 6) diffraction and (G, 6) Froude-Krylov wrenches, force (N) then torque (N m),
+        body frames.
+    """
+    count = heading.shape[0]
+    out = np.zeros((count, 6)), np.zeros((count, 6))
+    if owner.shape[0] == 0:
+        return out
+    dx, dy = np.cos(direction), np.sin(direction)
+    relative = direction - heading[owner]
+    v = velocity[owner]
+    encounter = omega - wavenumber * (v[:, 0] * dx + v[:, 1] * dy)
+    overtaken = encounter < 0.0
+    scattered = hydro.diffraction_at(np.abs(encounter),
+                                     np.where(overtaken, relative + np.pi, relative))
+    incident = hydro.froude_krylov_at(omega, relative)
+    turn = np.exp(1j * phase)
+    for table, rotated, into in ((scattered, np.where(overtaken, np.conj(turn), turn), out[0]),
+                                 (incident, turn, out[1])):
+        values = (amplitude[:, None] * table * rotated[:, None]).real  # (N, 6)
+        for q in range(6):
+            into[:, q] = np.bincount(owner, weights=values[:, q], minlength=count)
+    return out

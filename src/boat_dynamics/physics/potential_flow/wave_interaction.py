@@ -26,7 +26,7 @@ from boat_dynamics.physics.potential_flow.kelvin_wake import (
     pair_waves,
     wake_elevation,
 )
-from boat_dynamics.physics.potential_flow.made_waves import LocalWaves, local_wrench
+from boat_dynamics.physics.potential_flow.made_waves import local_wrenches
 
 __all__ = ["MADE_WAVES_MODELS", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
            "made_waves_build", "made_waves_elevation", "made_waves_wrench"]
@@ -54,6 +54,8 @@ class MadeWaves:
         hydro: their coefficients, one per receiver.
         min_wavelength: (R,) m, their wave filters.
         gravity: g, m/s^2.
+        hydro_groups: each coefficient set of the receivers with (K,) int, the sorted rows
+            of ``receivers`` that have it (their wrenches are evaluated together).
     """
 
     ships: tuple[tuple[ThinShip, np.ndarray], ...]
@@ -61,6 +63,7 @@ class MadeWaves:
     hydro: tuple[HydroCoefficients, ...]
     min_wavelength: np.ndarray
     gravity: float
+    hydro_groups: tuple[tuple[HydroCoefficients, np.ndarray], ...] = ()
 
 
 def made_waves_build(params: Sequence) -> MadeWaves | None:
@@ -77,11 +80,16 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
     receivers = [i for i, p in enumerate(params) if p.hydro is not None]
     if not any(r != s for r in receivers for s in sources):
         return None
+    hydro = tuple(params[i].hydro for i in receivers)
+    groups: dict[int, list[int]] = {}
+    for row, h in enumerate(hydro):
+        groups.setdefault(id(h), []).append(row)
     return MadeWaves(tuple((ship, np.array(m, dtype=np.intp)) for ship, m in makers.values()),
-                     np.array(receivers, dtype=np.intp),
-                     tuple(params[i].hydro for i in receivers),
+                     np.array(receivers, dtype=np.intp), hydro,
                      np.array([params[i].min_wavelength for i in receivers], dtype=float),
-                     float(params[0].gravity))
+                     float(params[0].gravity),
+                     tuple((hydro[rows[0]], np.array(rows, dtype=np.intp))
+                           for rows in groups.values()))
 
 
 def _courses(velocity_world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -144,15 +152,17 @@ def made_waves_wrench(made: MadeWaves, reference_xy: np.ndarray, heading: np.nda
     if waves is None:
         return Wrench(force, torque)
     rows, amplitude, omega, k, direction, phase = waves
-    for j in np.unique(rows):
-        mine = rows == j
-        r = made.receivers[j]
-        local = LocalWaves(reference_xy[r], t, amplitude[mine], omega[mine], k[mine],
-                           direction[mine], phase[mine])
-        scattered, incident = local_wrench(made.hydro[j], local, float(heading[r]),
-                                           velocity_world[r])
+    for hydro, members in made.hydro_groups:
+        mine = np.isin(rows, members)
+        if not mine.any():
+            continue
+        place = np.searchsorted(members, rows[mine])  # owner: the receiver's place in members
+        boats = made.receivers[members]
+        scattered, incident = local_wrenches(
+            hydro, place, heading[boats], velocity_world[boats], amplitude[mine], omega[mine],
+            k[mine], direction[mine], phase[mine])
         total = scattered + incident
-        force[r], torque[r] = total[:3], total[3:]
+        force[boats], torque[boats] = total[:, :3], total[:, 3:]
     return Wrench(force, torque)
 
 
