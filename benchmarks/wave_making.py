@@ -1,5 +1,4 @@
-"""The cost of boats that make waves (`make bench`, `--only wakes`): prints figures, asserts
-nothing.
+"""The cost of boats that make waves (`make bench`, `--only wakes`): prints, asserts nothing.
 
 Fleets of 2 and 10 default boxes at 3 m/s in a column 20 m apart (each in the wakes of those
 ahead) on calm water, stepped with `made_waves: all` and `none`: the difference per step,
@@ -15,8 +14,8 @@ from timing import best_of
 from boat_dynamics.physics.core import pipeline
 from boat_dynamics.physics.core.boat import BoatInputs
 from boat_dynamics.physics.core.system import FleetInputs
-from boat_dynamics.physics.potential_flow.kelvin_wake import wake_elevation
 from boat_dynamics.physics.scenario import parse_scenario
+from boat_dynamics.physics.wave_making.kelvin_wake import wake_elevation
 
 __all__ = ["bench_wave_making"]
 

@@ -21,8 +21,8 @@ from boat_dynamics.physics.body.rigid_body import quat_to_euler, rotation_matrix
 from boat_dynamics.physics.core import pipeline
 from boat_dynamics.physics.core.model import BoatInputs
 from boat_dynamics.physics.core.system import FleetInputs
-from boat_dynamics.physics.potential_flow.wave_interaction import made_waves_elevation
 from boat_dynamics.physics.scenario import Scenario, load_scenario
+from boat_dynamics.physics.wave_making.interaction import made_waves_elevation
 from ocean_sim.physics.waves import sample_surface
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -251,7 +251,7 @@ def _moored(params) -> bool:
 
 
 def _feels_waves(boats: Sequence[BoatSpec], i: int) -> bool:
-    """Whether boat i feels the waves other boats make (:mod:`.wave_interaction`).
+    """Whether boat i feels the waves other boats make (:mod:`.interaction`).
 
     It has coefficients (a file, or an estimate to be made) and another boat makes waves.
     """

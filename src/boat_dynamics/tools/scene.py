@@ -25,8 +25,8 @@ from boat_dynamics.physics.body.hull import box_mesh
 from boat_dynamics.physics.core.model import BoatParams
 from boat_dynamics.physics.core.tuning import equilibrium_height
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
-from boat_dynamics.physics.potential_flow.kelvin_wake import ThinShip, thin_ship
-from boat_dynamics.physics.potential_flow.wave_interaction import made_waves_elevation
+from boat_dynamics.physics.wave_making.interaction import made_waves_elevation
+from boat_dynamics.physics.wave_making.kelvin_wake import ThinShip, thin_ship
 from ocean_sim.physics.constants import GRAVITY
 from ocean_sim.physics.waves import WaveField, sample_surface
 
@@ -78,7 +78,7 @@ class HullShape:
         force_scale: m of arrow per N of force.
         arrow_radius: m, the arrows' thickness (3 % of the hull's length).
         ship: the hull below its waterline, whose Kelvin wake is drawn
-            (:mod:`boat_dynamics.physics.potential_flow.kelvin_wake`), or None: no wake (a
+            (:mod:`boat_dynamics.physics.wave_making.kelvin_wake`), or None: no wake (a
             boat that makes none, ``hydrodynamics.made_waves``).
     """
 
@@ -134,7 +134,7 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
         size: m, side of the square.
         resolution: m between grid points.
         made: (P, 2) m world points -> (P,) m, the waves the boats make, added to the sea's
-            (:func:`~boat_dynamics.physics.potential_flow.wave_interaction.made_waves_elevation`),
+            (:func:`~boat_dynamics.physics.wave_making.interaction.made_waves_elevation`),
             or None: none.
 
     Returns:

@@ -170,7 +170,7 @@ def test_the_sea_drawn_carries_the_wake_of_a_boat_at_speed(made):
     """A default box at 3 m/s along +x on calm water: the sea drawn behind it is its Kelvin
     wake (kelvin_wake.wake_elevation, from the poses' velocity) inside the 19.47 deg wedge,
     flat ahead of it and outside the wedge; flat everywhere for a boat that makes no waves."""
-    from boat_dynamics.physics.potential_flow.kelvin_wake import wake_elevation
+    from boat_dynamics.physics.wave_making.kelvin_wake import wake_elevation
 
     spec = parse_scenario({"boats": [{"hydrodynamics": {"made_waves": made}}]}).boats[0]
     shape = hull_shape(spec.params)

@@ -39,7 +39,7 @@ from boat_dynamics.physics.potential_flow.added_mass import added_mass_coriolis
 from boat_dynamics.physics.potential_flow.diffraction import excitation_wrench
 from boat_dynamics.physics.potential_flow.hull_lift import hull_lift
 from boat_dynamics.physics.potential_flow.radiation import memory_wrench
-from boat_dynamics.physics.potential_flow.wave_interaction import made_waves_wrench
+from boat_dynamics.physics.wave_making.interaction import made_waves_wrench
 from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.constants import AIR_DENSITY
 from ocean_sim.physics.environment import Environment

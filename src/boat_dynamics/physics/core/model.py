@@ -26,9 +26,9 @@ from boat_dynamics.physics.force_models.rudder import Rudder
 from boat_dynamics.physics.force_models.wind import Windage
 from boat_dynamics.physics.potential_flow.hull_lift import HullLift
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients, hydro_key
-from boat_dynamics.physics.potential_flow.kelvin_wake import ThinShip
 from boat_dynamics.physics.potential_flow.radiation import RadiationMemory
-from boat_dynamics.physics.potential_flow.wave_interaction import MadeWavesModel
+from boat_dynamics.physics.wave_making.interaction import MadeWavesModel
+from boat_dynamics.physics.wave_making.kelvin_wake import ThinShip
 from ocean_sim.physics.constants import GRAVITY, WATER_DENSITY
 from ocean_sim.physics.waves import Precision
 
@@ -166,7 +166,7 @@ class BoatParams:
         hull_lift: the trailing sections whose lift acts at speed (:mod:`.hull_lift`), or
             None: no hull lift.
         made_waves: the waves the boat makes that the other boats feel
-            (:mod:`.wave_interaction`).
+            (:mod:`.interaction`).
         thin_ship: its hull's half-breadths for its Kelvin wake (:mod:`.kelvin_wake`), or
             None: derived by ``pipeline.init`` when ``derive.thin_ship`` asks, else no wake.
     """
@@ -269,7 +269,7 @@ class Forces:
     ``diffraction`` is zero for a boat without potential-flow coefficients, ``slamming`` for a
     hull without a slamming model or not slamming, ``mooring`` for a boat not moored, ``wind``
     in calm air or for a boat without windage, ``collision`` for a boat touching no obstacle,
-    ``made_waves`` (the other boats' waves, :mod:`.wave_interaction`) for a lone boat, one
+    ``made_waves`` (the other boats' waves, :mod:`.interaction`) for a lone boat, one
     without coefficients, or where no other boat's waves reach.
     """
 

@@ -40,7 +40,7 @@ from boat_dynamics.physics.force_models.rudder import Rudder
 from boat_dynamics.physics.potential_flow.hull_lift import HullLift
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.potential_flow.radiation import MAX_ORDER, RadiationMemory
-from boat_dynamics.physics.potential_flow.wave_interaction import MadeWaves, made_waves_build
+from boat_dynamics.physics.wave_making.interaction import MadeWaves, made_waves_build
 from boat_dynamics.physics.world.footprints import Footprints
 from ocean_sim.physics.waves import Precision
 
@@ -395,7 +395,7 @@ class System:
             zero for a boat without hull lift), or None when no boat has any
             (:mod:`.hull_lift`).
         made_waves: the boats that make waves and those that feel them
-            (:mod:`.wave_interaction`), or None when no boat feels another's waves (a lone
+            (:mod:`.interaction`), or None when no boat feels another's waves (a lone
             boat, or none making any).
     """
 

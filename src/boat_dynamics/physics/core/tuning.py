@@ -25,7 +25,7 @@ from boat_dynamics.physics.force_models.wind import Windage, windage_of_hull
 from boat_dynamics.physics.potential_flow.gap_modes import memory_of
 from boat_dynamics.physics.potential_flow.hull_lift import trailing_sections
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients, estimate
-from boat_dynamics.physics.potential_flow.kelvin_wake import thin_ship
+from boat_dynamics.physics.wave_making.kelvin_wake import thin_ship
 from ocean_sim.physics.waves import WaveField
 
 __all__ = [

@@ -43,10 +43,6 @@ from boat_dynamics.physics.potential_flow.hydro import (
     find_coefficients,
     load_coefficients,
 )
-from boat_dynamics.physics.potential_flow.wave_interaction import (
-    MADE_WAVES_MODELS,
-    MadeWavesModel,
-)
 from boat_dynamics.physics.scenario.models import (
     buoyancy_block,
     control_block,
@@ -68,6 +64,10 @@ from boat_dynamics.physics.scenario.read import (
 )
 from boat_dynamics.physics.scenario.sensors import sensors_block
 from boat_dynamics.physics.scenario.specs import BoatSpec, ScenarioError, SimulationSettings
+from boat_dynamics.physics.wave_making.interaction import (
+    MADE_WAVES_MODELS,
+    MadeWavesModel,
+)
 
 #: Damping ratios [heave, roll, pitch] of the default linear damping (critical-damping helper).
 DEFAULT_CRITICAL_RATIO = (0.2, 0.1, 0.2)
@@ -311,7 +311,7 @@ def _with_hydrodynamics(params: BoatParams, d: Mapping[str, Any], key: str,
 def _made_waves(raw: Any, key: str) -> MadeWavesModel:
     """``hydrodynamics.made_waves``: the waves the boat makes that the others feel.
 
-    :mod:`.wave_interaction`: its Kelvin wake (``wake``; ``all`` is every kind modelled) or
+    :mod:`.interaction`: its Kelvin wake (``wake``; ``all`` is every kind modelled) or
     ``none``. Only boats with coefficients feel them; a boat without makes them all the same.
     """
     d = {} if raw is None else mapping(raw, key)

@@ -20,13 +20,13 @@ import numpy as np
 
 from boat_dynamics.physics.body.wrench import Wrench
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
-from boat_dynamics.physics.potential_flow.kelvin_wake import (
+from boat_dynamics.physics.wave_making.kelvin_wake import (
     SHORTEST_WAVE,
     ThinShip,
     pair_waves,
     wake_elevation,
 )
-from boat_dynamics.physics.potential_flow.made_waves import local_wrenches
+from boat_dynamics.physics.wave_making.made_waves import local_wrenches
 
 __all__ = ["MADE_WAVES_MODELS", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
            "made_waves_build", "made_waves_elevation", "made_waves_wrench"]

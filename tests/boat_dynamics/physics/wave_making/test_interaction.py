@@ -11,9 +11,9 @@ from boat_dynamics.physics.body.rigid_body import quat_to_euler
 from boat_dynamics.physics.core import pipeline
 from boat_dynamics.physics.core.system import BoatInputs, FleetInputs
 from boat_dynamics.physics.potential_flow.diffraction import excitation_wrench
-from boat_dynamics.physics.potential_flow.kelvin_wake import wake_waves
-from boat_dynamics.physics.potential_flow.made_waves import LocalWaves, stacked
 from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
+from boat_dynamics.physics.wave_making.kelvin_wake import wake_waves
+from boat_dynamics.physics.wave_making.made_waves import LocalWaves, stacked
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
 DT = 0.01

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from boat_dynamics.physics.body.hull import HullMesh
-from boat_dynamics.physics.potential_flow.made_waves import LocalWaves
+from boat_dynamics.physics.wave_making.made_waves import LocalWaves
 from ocean_sim.physics.constants import GRAVITY
 
 __all__ = ["SHORTEST_WAVE", "ThinShip", "amplitude", "michell_resistance", "pair_waves",

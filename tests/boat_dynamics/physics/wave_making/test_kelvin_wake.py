@@ -22,8 +22,8 @@ import pytest
 from boat_dynamics.physics.body.hull import BoxHull, box_mesh
 from boat_dynamics.physics.core.pipeline import init_scenario
 from boat_dynamics.physics.core.tuning import _mesh
-from boat_dynamics.physics.potential_flow import kelvin_wake as kw
 from boat_dynamics.physics.scenario import load_scenario
+from boat_dynamics.physics.wave_making import kelvin_wake as kw
 
 G = 9.81
 SCENARIOS = Path(__file__).resolve().parents[4] / "scenarios"
