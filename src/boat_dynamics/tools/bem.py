@@ -43,8 +43,8 @@ from boat_dynamics.tools.bem_mesh import (
     mirror_symmetric,
 )
 
-__all__ = ["CAPYTAINE_VERSION", "DOF_NAMES", "MAX_PANELS", "SolvePlan", "conventions_text",
-           "plan_hull", "solve_hull", "write"]
+__all__ = ["CAPYTAINE_VERSION", "DOF_NAMES", "KOCHIN_ANGLES", "MAX_PANELS", "SolvePlan",
+           "conventions_text", "plan_hull", "solve_hull", "write"]
 
 LOG = logging.getLogger(__name__)
 
@@ -62,6 +62,10 @@ MAX_PANELS = 8000
 
 #: Capytaine's rigid-body dof names, in the order of every 6-vector and 6 x 6 matrix.
 DOF_NAMES = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+
+#: rad, the angles of the files' Kochin functions (the direction the outgoing wave travels
+#: toward, body frame): 0, 5, ..., 355 deg.
+KOCHIN_ANGLES = np.radians(np.arange(0.0, 360.0, 5.0))
 
 
 def _capytaine_mesh(panels: np.ndarray, sym_x: bool, sym_y: bool, name: str):
@@ -111,8 +115,37 @@ def _solve_frequencies(body, omegas, directions, env: dict) -> list:
     return results
 
 
+def _kochin(results, omegas, directions) -> dict:
+    """(W, 6, T) radiation and (W, D, T) diffraction Kochin functions at :data:`KOCHIN_ANGLES`.
+
+    Capytaine's ``compute_kochin`` (post_pro/kochin.py: the panel sources, hull and lid,
+    times e^{k z} e^{-i k (x cos theta + y sin theta)} dS / 4 pi about x = y = 0; the indirect
+    method's sources, which ``solve_all`` keeps): m^2/s per unit motion amplitude (1 m,
+    1 rad) of each dof, and per metre of incident amplitude for the scattered potential.
+    """
+    from capytaine.post_pro.kochin import compute_kochin
+
+    w_index = {float(w): i for i, w in enumerate(omegas)}
+    b_index = {float(b): i for i, b in enumerate(directions)}
+    radiation = np.full((len(omegas), 6, len(KOCHIN_ANGLES)), np.nan, dtype=complex)
+    diffraction = np.full((len(omegas), len(directions), len(KOCHIN_ANGLES)), np.nan,
+                          dtype=complex)
+    for r in results:
+        i = w_index[float(r.omega)]
+        kind = type(r).__name__  # a failed solve stays NaN (as its forces do)
+        if kind == "RadiationResult":
+            radiation[i, DOF_NAMES.index(r.radiating_dof)] = compute_kochin(r, KOCHIN_ANGLES)
+        elif kind == "DiffractionResult":
+            diffraction[i, b_index[float(r.wave_direction)]] = compute_kochin(r, KOCHIN_ANGLES)
+    return dict(kochin_angles=KOCHIN_ANGLES, kochin_radiation=radiation,
+                kochin_diffraction=diffraction)
+
+
 def _tables(results, omegas, directions) -> dict:
-    """(W, 6, 6) added mass and damping, (W, D, 6) Froude-Krylov and diffraction forces."""
+    """(W, 6, 6) added mass and damping, (W, D, 6) Froude-Krylov and diffraction forces.
+
+    And the Kochin functions of every problem (:func:`_kochin`).
+    """
     import capytaine as cpt
 
     ds = cpt.assemble_dataset(results)
@@ -127,7 +160,8 @@ def _tables(results, omegas, directions) -> dict:
         return ds[name].sel(**sel).transpose("omega", "wave_direction", "influenced_dof").values
 
     return dict(added_mass=mat("added_mass"), radiation_damping=mat("radiation_damping"),
-                froude_krylov=exc("Froude_Krylov_force"), diffraction=exc("diffraction_force"))
+                froude_krylov=exc("Froude_Krylov_force"), diffraction=exc("diffraction_force"),
+                **_kochin(results, omegas, directions))
 
 
 def _limit_added_mass(results, omega_value: float) -> np.ndarray:

@@ -262,6 +262,13 @@ def test_a_solve_reproduces_the_reference_box():
         assert np.abs(out["radiation_damping"][:, i, i] - b).max() <= 0.015 * np.abs(b).max()
         a = ref.added_mass[:, i, i]
         assert np.abs(out["added_mass"][:, i, i] - a).max() <= 0.015 * np.abs(a).max()
+    # its Kochin functions (issue 31): the radiated power equals the damping within 5 %
+    k = out["omega"] ** 2 / 9.81
+    power = (np.abs(out["kochin_radiation"]) ** 2).mean(axis=2) * 2 * np.pi
+    energy = 4 * np.pi * 1025.0 * k[:, None] / out["omega"][:, None] * power
+    damping = np.diagonal(out["radiation_damping"], axis1=1, axis2=2)
+    assert np.all(np.abs(energy - damping).max(axis=0) <= 0.05 * np.abs(damping).max(axis=0))
+    assert out["kochin_diffraction"].shape == (40, len(out["directions"]), 72)
 
 
 def test_the_otters_gap_resonances_are_found_and_said(capsys, tmp_path):

@@ -95,6 +95,15 @@ class HydroCoefficients:
             estimate (:func:`estimate`).
         gap_modes: the file's gap resonances, found by local solves around its narrow peaks
             (:class:`GapMode`; the ``gap_mode_*`` arrays), or none.
+        kochin_angles: (T,) rad, body frame, increasing within [0, 2 pi): the directions
+            the outgoing waves of the Kochin functions travel toward; None for a file
+            without Kochin functions (the three ``kochin_*`` arrays: all or none).
+        kochin_radiation: (W, 6, T) complex, m^2/s per unit motion amplitude (1 m, 1 rad)
+            of each dof (rotations about ``center_of_mass``): the radiation problems'
+            Kochin functions H_j(theta) (Capytaine's ``compute_kochin``, about x = y = 0;
+            tests/data/wavemaking/README.md), or None.
+        kochin_diffraction: (W, D, T) complex, m^2/s per metre of incident amplitude, at
+            ``directions``: the scattered potential's H_D(theta; beta), or None.
     """
 
     omega: np.ndarray
@@ -109,6 +118,14 @@ class HydroCoefficients:
     center_of_mass: np.ndarray
     source: str = ""
     gap_modes: tuple[GapMode, ...] = ()
+    kochin_angles: np.ndarray | None = None
+    kochin_radiation: np.ndarray | None = None
+    kochin_diffraction: np.ndarray | None = None
+
+    @property
+    def has_kochin(self) -> bool:
+        """True when the file carries Kochin functions (the boat can make waves)."""
+        return self.kochin_angles is not None
 
     def added_mass_at(self, omega: float) -> np.ndarray:
         """(6, 6) A at ``omega`` (linear in omega between grid points, clamped at the ends)."""
@@ -198,6 +215,10 @@ _SHAPES = {
 #: The optional arrays of a file's gap modes (:class:`GapMode`): all four or none.
 _MODE_SHAPES = {"gap_mode_omega": ("M",), "gap_mode_zeta": ("M",),
                 "gap_mode_residue": ("M", 6, 6), "gap_mode_excitation": ("M", "D", 6)}
+#: The optional Kochin functions of a file (``boatsim hydro`` writes them since issue 31):
+#: all three or none.
+_KOCHIN_SHAPES = {"kochin_angles": ("T",), "kochin_radiation": ("W", 6, "T"),
+                  "kochin_diffraction": ("W", "D", "T")}
 
 
 def load_coefficients(path: str | Path) -> HydroCoefficients:
@@ -210,7 +231,8 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
     try:
         _check_sizes(p)
         with np.load(p, allow_pickle=False) as data:
-            arrays = {name: np.asarray(data[name]) for name in (*_SHAPES, *_MODE_SHAPES)
+            arrays = {name: np.asarray(data[name])
+                      for name in (*_SHAPES, *_MODE_SHAPES, *_KOCHIN_SHAPES)
                       if name in data.files}
     except (OSError, ValueError, zipfile.BadZipFile, EOFError, MemoryError) as exc:
         if isinstance(exc, HydroFileError):
@@ -225,7 +247,8 @@ def load_coefficients(path: str | Path) -> HydroCoefficients:
         raise HydroFileError(f"{p}: omega must hold at least two increasing values > 0")
     _check_physics(p, arrays)
     return HydroCoefficients(**{name: arrays[name] for name in _SHAPES}, source=str(p),
-                             gap_modes=_gap_modes(p, arrays, sizes))
+                             gap_modes=_gap_modes(p, arrays, sizes),
+                             **_kochin(p, arrays, sizes))
 
 
 def _check_array(p: Path, name: str, a: np.ndarray, shape: tuple, sizes: dict[str, int]) -> None:
@@ -267,6 +290,26 @@ def _gap_modes(p: Path, arrays: dict[str, np.ndarray], sizes: dict[str, int]
     residue = arrays["gap_mode_residue"].astype(complex)
     return tuple(GapMode(float(w0), float(z), r, x.astype(complex)) for w0, z, r, x in
                  zip(omega0, zeta, residue, arrays["gap_mode_excitation"], strict=True))
+
+
+def _kochin(p: Path, arrays: dict[str, np.ndarray], sizes: dict[str, int]) -> dict:
+    """The file's Kochin arrays (``kochin_*``: all three or none), checked; {} for none."""
+    present = [name for name in _KOCHIN_SHAPES if name in arrays]
+    if not present:
+        return {}
+    if len(present) != len(_KOCHIN_SHAPES):
+        missing = sorted(set(_KOCHIN_SHAPES) - set(present))
+        raise HydroFileError(f"{p}: Kochin arrays {missing} are missing (all three or none)")
+    for name, shape in _KOCHIN_SHAPES.items():
+        _check_array(p, name, arrays[name], shape, sizes)
+    theta = arrays["kochin_angles"]
+    if (np.iscomplexobj(theta) or theta.size < 8 or np.any(np.diff(theta) <= 0.0)
+            or theta[0] < 0.0 or theta[-1] >= 2 * np.pi):
+        raise HydroFileError(f"{p}: kochin_angles {np.degrees(np.real(theta)).round(3).tolist()}"
+                             " deg: at least eight, real, increasing, within [0, 360) deg")
+    return dict(kochin_angles=theta.astype(float),
+                kochin_radiation=arrays["kochin_radiation"].astype(complex),
+                kochin_diffraction=arrays["kochin_diffraction"].astype(complex))
 
 
 def _check_sizes(p: Path) -> None:
@@ -388,7 +431,8 @@ def moved(hydro: HydroCoefficients, center: np.ndarray) -> HydroCoefficients:
     A rigid motion about the old centre c is one about the new centre n plus a translation:
     with d = c - n and T = [[I, -[d]x], [0, I]], A' = T^T A T (B, A_inf, C, M alike) and
     F' = T^T F (Newman 1977, sec. 6.11; Fossen 2011, sec. 7.5); a gap mode's residue as B, its
-    excitation as F.
+    excitation as F; the radiation Kochin functions as F (the wave is linear in the motion,
+    x_c = T x_n), the diffraction ones unchanged.
     """
     d = hydro.center_of_mass - np.asarray(center, dtype=float)
     t = np.eye(6)
@@ -406,7 +450,11 @@ def moved(hydro: HydroCoefficients, center: np.ndarray) -> HydroCoefficients:
         force(hydro.diffraction), square(hydro.hydrostatic_stiffness),
         square(hydro.inertia_matrix), np.asarray(center, dtype=float), hydro.source,
         tuple(replace(m, residue=square(m.residue), excitation=force(m.excitation))
-              for m in hydro.gap_modes))
+              for m in hydro.gap_modes),
+        hydro.kochin_angles,
+        None if hydro.kochin_radiation is None
+        else np.einsum("ki,wkt->wit", t, hydro.kochin_radiation),
+        hydro.kochin_diffraction)
 
 
 def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
@@ -415,7 +463,8 @@ def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
     Lengths x s, frequencies / sqrt(s); a coefficient's powers of s follow its dofs (e = 1 for
     a rotation): A and M s^(3 + e_i + e_j), B s^(2.5 + e_i + e_j), C s^(2 + e_i + e_j), the
     excitation per metre of amplitude s^(2 + e_i) (Newman 1977, sec. 2.11; ITTC 7.5-02-07-02.1);
-    a gap mode's residue as B, its excitation as the excitation.
+    a gap mode's residue as B, its excitation as the excitation; the Kochin functions (m^2/s
+    per metre of motion or of wave) s^(1.5 + e_j), e_j = 0 for the diffraction ones.
     """
     e = _ROTATIONAL[:, None] + _ROTATIONAL[None, :]
     return HydroCoefficients(
@@ -426,7 +475,11 @@ def froude_scaled(hydro: HydroCoefficients, scale: float) -> HydroCoefficients:
         hydro.hydrostatic_stiffness * scale ** (2.0 + e), hydro.inertia_matrix * scale ** (3.0 + e),
         hydro.center_of_mass * scale, hydro.source,
         tuple(GapMode(m.omega0 / np.sqrt(scale), m.zeta, m.residue * scale ** (2.5 + e),
-                      m.excitation * scale ** (2.0 + _ROTATIONAL)) for m in hydro.gap_modes))
+                      m.excitation * scale ** (2.0 + _ROTATIONAL)) for m in hydro.gap_modes),
+        hydro.kochin_angles,
+        None if hydro.kochin_radiation is None
+        else hydro.kochin_radiation * scale ** (1.5 + _ROTATIONAL)[:, None],
+        None if hydro.kochin_diffraction is None else hydro.kochin_diffraction * scale**1.5)
 
 
 def estimate(mass: float, center_of_mass: np.ndarray, water_density: float, z_eq: float,

@@ -66,6 +66,36 @@ def test_coefficients_the_physics_cannot_use_are_refused(tmp_path, changes, frag
     assert fragment in str(err.value)
 
 
+_THETA = np.radians(np.arange(0.0, 360.0, 5.0))
+_KOCHIN = dict(kochin_angles=_THETA, kochin_radiation=np.ones((40, 6, 72), complex),
+               kochin_diffraction=np.ones((40, 5, 72), complex))
+
+
+@pytest.mark.parametrize(("changes", "fragment"), [
+    ({**_KOCHIN, "kochin_diffraction": None}, "Kochin arrays ['kochin_diffraction'] are missing "
+                                              "(all three or none)"),
+    ({**_KOCHIN, "kochin_radiation": np.ones((40, 5, 72))},
+     "kochin_radiation has shape (40, 5, 72), expected ('W', 6, 'T')"),
+    ({**_KOCHIN, "kochin_diffraction": np.ones((40, 4, 72))}, "D = 4, but 5 elsewhere"),
+    ({**_KOCHIN, "kochin_radiation": np.full((40, 6, 72), np.nan + 0j)},
+     "kochin_radiation has non-finite values"),
+    ({**_KOCHIN, "kochin_angles": _THETA[::-1]}, "at least eight, real, increasing"),
+])
+def test_malformed_kochin_functions_are_refused_by_name(tmp_path, changes, fragment):
+    with pytest.raises(HydroFileError) as err:
+        load_coefficients(_write(tmp_path / "bad.npz", **changes))
+    assert fragment in str(err.value)
+
+
+def test_a_file_without_kochin_functions_loads_without_them(tmp_path):
+    # files made before issue 31: their boats make no waves
+    old = load_coefficients(BOX)
+    assert not old.has_kochin and old.kochin_radiation is None
+    new = load_coefficients(_write(tmp_path / "kochin.npz", **_KOCHIN))
+    assert new.has_kochin and new.kochin_diffraction.dtype == complex
+    assert np.array_equal(new.added_mass, old.added_mass)
+
+
 def test_a_file_that_would_allocate_more_than_it_holds_is_refused_before_reading(tmp_path):
     import zipfile
 
