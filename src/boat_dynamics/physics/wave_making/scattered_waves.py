@@ -23,6 +23,15 @@ complex amplitude as the file's), r and theta the distance and world angle from 
 boat's heading. Energy (Newman 1977, sec. 6.19) ties H_j to the file's damping:
 B_jj = 4 pi rho k / omega integral |H_j|^2 d theta (deep water).
 
+That is the leading term of the exact wave part outside the hull's circle,
+(2 pi k omega / g) sum_n i^n h_n H_n^(1)(k r) e^{i n theta} for H = sum_n h_n e^{i n theta}
+(tests/data/wavemaking/README.md). The next term of each Hankel function's expansion,
+1 + i (4 n^2 - 1) / (8 k r) (Abramowitz & Stegun 9.2.7), is kept: H is replaced by
+H + i (4 C - H) / (8 k r), C = sum n^2 h_n e^{i n theta} = -H'' over the harmonics
+|n| <= 8 (:func:`curvature`; higher ones are noise the near field would amplify), k r held
+at 2 or more. It is what lags a pattern that varies fast with theta (yaw's sin 2 theta:
+17 deg at k r = 6.4) and brings the far field within a few percent of Capytaine's from 20 m.
+
 Near a receiving boat the cylindrical wave is replaced by the plane wave of its local
 amplitude, phase and direction: the wide-spacing approximation of multiple-body interaction
 (Simon 1982, J. Fluid Mech. 120, 1-25; McIver & Evans 1984, Appl. Ocean Res. 6(2), 101-107),
@@ -33,17 +42,17 @@ Close to the source the far field is wrong: the near field (evanescent modes, de
 r^{-3/2} and faster) is left out, and the far-field amplitude grows as r^{-1/2} toward the
 hull. The waves are therefore zero within the hull's waterline radius R (:func:`hull_radius`)
 and tapered smoothly (3 s^2 - 2 s^3, s = (r - R) / R) to the full far field at 2 R. Measured
-against Capytaine's full solution for the default 4 x 2 x 1 m box
-(test_scattered_waves.py; error over the largest elevation on three rays, from 20 m and one
-wavelength out): radiated waves surge to pitch within 7.8 %, yaw 29 % (zero on the rays),
-scattered 9.0 %, the free box 10.5 % for waves up to 3 boat lengths (longer ones 13-26 %: the
-box follows them and makes little). Components outside the file's frequency range make no
-waves; a hull without Kochin functions in its file makes none; zero forward speed.
+against Capytaine's full solution for the default 4 x 2 x 1 m box (test_scattered_waves.py;
+error over the largest elevation on three rays from 20 m out, waves of 1.45-5.8 s): radiated
+waves surge to pitch within 3.6 %, yaw 8.0 %, scattered 3.9 %, the free box in waves 9.1 %
+(5.7 % up to 4.5 s); a heaving cylinder 3.5 %. The 7.9 s wave (k r = 1.3 at 20 m): 10-13 %.
+Components outside the file's frequency range make no waves; a hull without Kochin
+functions in its file makes none; zero forward speed.
 
 Cost (CPU, one thread, numpy): per source and step, the RAO and pattern of each component
-(N 6 x 6 solves), then N complex products per point: 0.37 ms for a 16-component sea and
-2.6 ms for 945 components, one receiver (plus 0.015 and 0.15 ms for
-:func:`.made_waves.local_wrench`); :func:`outgoing_elevation` at 4,096 points 7 ms and 0.4 s.
+(N 6 x 6 solves), then N complex products per point: 0.48 ms for a 16-component sea and
+2.7 ms for 945 components, one receiver (plus 0.015 and 0.15 ms for
+:func:`.made_waves.local_wrench`); :func:`outgoing_elevation` at 4,096 points 9 ms and 0.3 s.
 """
 
 from __future__ import annotations
@@ -58,9 +67,17 @@ from ocean_sim.physics.waves import WaveField
 
 #: Points per block of :func:`outgoing_elevation`.
 _BLOCK = 128
+#: The Kochin functions' harmonics the 1 / (k r) term of the far field keeps.
+HARMONICS = 8
+#: The k r below which that term is held at its value there (it is an asymptotic series).
+MIN_KR = 2.0
+#: :func:`curvature`'s tables of the last few files, by the identity of their Kochin arrays
+#: (the arrays themselves kept beside them, so an identity is never reused while cached).
+_CURVATURES: dict[tuple[int, int], tuple] = {}
+_KEPT = 32
 
-__all__ = ["far_field_factor", "hull_radius", "motion_rao", "no_waves_note",
-           "outgoing_elevation", "outgoing_waves", "pattern"]
+__all__ = ["HARMONICS", "MIN_KR", "curvature", "far_field", "far_field_factor", "hull_radius",
+           "motion_rao", "no_waves_note", "outgoing_elevation", "outgoing_waves", "pattern"]
 
 
 def no_waves_note(hydro: HydroCoefficients) -> str | None:
@@ -148,7 +165,8 @@ def motion_rao(hydro: HydroCoefficients, omega: np.ndarray, direction: np.ndarra
 
 
 def pattern(hydro: HydroCoefficients, omega: np.ndarray, direction: np.ndarray,
-            motion: np.ndarray, angles: np.ndarray) -> np.ndarray:
+            motion: np.ndarray, angles: np.ndarray,
+            tables: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """(N, P) complex Kochin function H_D + sum_j xi_j H_j at P angles, body frame.
 
     Linear in the angle (periodic) and in omega (clamped), and in the incident direction
@@ -162,10 +180,14 @@ def pattern(hydro: HydroCoefficients, omega: np.ndarray, direction: np.ndarray,
         direction: (N,) rad, each incident wave's direction relative to the bow.
         motion: (N, 6) complex, per metre of amplitude (:func:`motion_rao`).
         angles: (P,) rad, body frame, the directions the outgoing waves travel toward.
+        tables: (W, 6, T) radiation and (W, D, T) diffraction tables in place of the
+            file's Kochin functions (:func:`curvature`'s), or None.
 
     Returns:
         m^2/s per metre of incident amplitude.
     """
+    radiation, diffraction = ((hydro.kochin_radiation, hydro.kochin_diffraction)
+                              if tables is None else tables)
     angles = np.asarray(angles, dtype=float)
     i, u = _omega_weights(hydro.omega, np.asarray(omega, dtype=float))
     u2 = u[:, None]
@@ -178,17 +200,84 @@ def pattern(hydro: HydroCoefficients, omega: np.ndarray, direction: np.ndarray,
     beta = np.clip(beta, grid[0], grid[-1])
     j = np.clip(np.searchsorted(grid, beta) - 1, 0, grid.shape[0] - 2)
     v = ((beta - grid[j]) / (grid[j + 1] - grid[j]))[:, None]
-    kd = _at_angles(hydro.kochin_angles, hydro.kochin_diffraction, angles)  # (W, D, P)
+    kd = _at_angles(hydro.kochin_angles, diffraction, angles)  # (W, D, P)
     scattered = ((1 - u2) * (1 - v) * kd[i, j] + u2 * (1 - v) * kd[i + 1, j]
                  + (1 - u2) * v * kd[i, j + 1] + u2 * v * kd[i + 1, j + 1])
     if np.any(mirrored):
-        kd = _at_angles(hydro.kochin_angles, hydro.kochin_diffraction, -angles)
+        kd = _at_angles(hydro.kochin_angles, diffraction, -angles)
         flipped = ((1 - u2) * (1 - v) * kd[i, j] + u2 * (1 - v) * kd[i + 1, j]
                    + (1 - u2) * v * kd[i, j + 1] + u2 * v * kd[i + 1, j + 1])
         scattered = np.where(mirrored[:, None], flipped, scattered)
-    kr = _at_angles(hydro.kochin_angles, hydro.kochin_radiation, angles)  # (W, 6, P)
+    kr = _at_angles(hydro.kochin_angles, radiation, angles)  # (W, 6, P)
     radiated = (1 - u2[..., None]) * kr[i] + u2[..., None] * kr[i + 1]  # (N, 6, P)
     return scattered + np.einsum("nj,njp->np", motion, radiated)
+
+
+def curvature(hydro: HydroCoefficients) -> tuple[np.ndarray, np.ndarray] | None:
+    """-d^2 H / d theta^2 of the file's Kochin functions, harmonics |n| <= :data:`HARMONICS`.
+
+    H(theta) = sum_n h_n e^{i n theta} gives sum_n n^2 h_n e^{i n theta} (FFT over the
+    file's angles; the higher harmonics, noise that the near field would amplify, are left
+    out: tests/data/wavemaking/README.md). None unless the angles are uniform over 2 pi.
+
+    Returns:
+        (W, 6, T) radiation and (W, D, T) diffraction tables, as the file's. Computed once
+        per pair of tables (kept, with the tables, for the last :data:`_KEPT` files).
+    """
+    key = (id(hydro.kochin_radiation), id(hydro.kochin_diffraction))
+    if key in _CURVATURES:  # the arrays are alive in it: their identities are theirs
+        return _CURVATURES[key][2]
+    theta = hydro.kochin_angles
+    bent = None
+    if np.allclose(np.diff(theta), 2 * np.pi / theta.shape[0], rtol=0.0, atol=1e-6):
+        bent = _bent(hydro.kochin_radiation), _bent(hydro.kochin_diffraction)
+    if len(_CURVATURES) >= _KEPT:
+        _CURVATURES.pop(next(iter(_CURVATURES)))
+    _CURVATURES[key] = (hydro.kochin_radiation, hydro.kochin_diffraction, bent)
+    return bent
+
+
+def _bent(table: np.ndarray) -> np.ndarray:
+    """sum_n n^2 h_n e^{i n theta}, |n| <= :data:`HARMONICS`, of (..., T) uniform samples."""
+    t = table.shape[-1]
+    n = np.fft.fftfreq(t, 1.0 / t)
+    weight = np.where(np.abs(n) <= HARMONICS, n**2, 0.0)
+    return np.fft.ifft(np.fft.fft(table, axis=-1) * weight, axis=-1)
+
+
+def _next_term(h: np.ndarray, bend: np.ndarray, kr: np.ndarray) -> np.ndarray:
+    """H + i (4 C - H) / (8 k r): the 1 / (k r) term of each harmonic's H_n^(1)(k r).
+
+    H_n^(1)(x) ~ sqrt(2 / (pi x)) e^{i (x - n pi / 2 - pi / 4)} (1 + i (4 n^2 - 1) / (8 x));
+    C = sum n^2 h_n e^{i n theta} (:func:`curvature`). k r below :data:`MIN_KR` counts as it.
+    """
+    return h + 1j * (4.0 * bend - h) / (8.0 * np.maximum(kr, MIN_KR))
+
+
+def far_field(hydro: HydroCoefficients, table: np.ndarray, omega: float, k: float,
+              xy: np.ndarray, gravity: float, depth: float) -> np.ndarray:
+    """(M, P) complex elevations of M Kochin functions of the file's angles, about x = y = 0.
+
+    The far field of :func:`outgoing_elevation` for bare Kochin functions (one problem
+    each: a dof's radiation per unit motion, a heading's scattering per metre), body frame,
+    e^{-i omega t}; no taper.
+
+    Args:
+        hydro: for its ``kochin_angles``.
+        table: (M, T) complex, m^2/s, on ``hydro.kochin_angles`` (uniform).
+        omega: rad/s.
+        k: rad/m.
+        xy: (P, 2) m, body frame.
+        gravity: m/s^2.
+        depth: m (``inf``: deep water).
+    """
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    r = np.hypot(xy[:, 0], xy[:, 1])
+    alpha = np.arctan2(xy[:, 1], xy[:, 0])
+    theta = hydro.kochin_angles
+    h = _next_term(_at_angles(theta, table, alpha), _at_angles(theta, _bent(table), alpha),
+                   k * r)
+    return h * far_field_factor(np.array([[omega]]), np.array([[k]]), r, gravity, depth)
 
 
 def _at_angles(theta: np.ndarray, table: np.ndarray, angles: np.ndarray) -> np.ndarray:
@@ -208,8 +297,9 @@ def _sources(hydro: HydroCoefficients, sea: WaveField, source_xy: np.ndarray,
     Returns:
         None when it makes none; else ``keep`` (M,) the components it answers, and for
         those N: ``omega``, ``k``, ``beta`` (relative to the bow), ``motion`` (N, 6),
-        ``incident`` (N,) complex a e^{i theta_0} at the source at ``t``, and
-        ``pattern`` (N, T) on the file's angles (filled on demand).
+        ``incident`` (N,) complex a e^{i theta_0} at the source at ``t``, the file's
+        ``curvature`` tables, and ``pattern``, ``bend`` (N, T) on the file's angles
+        (filled on demand).
     """
     arrays = sea.arrays
     keep = (arrays.a > 0.0) & (arrays.omega >= hydro.omega[0]) & (arrays.omega <= hydro.omega[-1])
@@ -219,7 +309,8 @@ def _sources(hydro: HydroCoefficients, sea: WaveField, source_xy: np.ndarray,
     beta = np.arctan2(arrays.dy[keep], arrays.dx[keep]) - source_heading
     theta0 = np.asarray(source_xy, dtype=float).reshape(2) @ arrays.kd[:, keep] - w * t
     return dict(keep=keep, omega=w, k=k, beta=beta, motion=motion_rao(hydro, w, beta, viscous),
-                incident=arrays.a[keep] * np.exp(1j * (theta0 + arrays.phi[keep])))
+                incident=arrays.a[keep] * np.exp(1j * (theta0 + arrays.phi[keep])),
+                curvature=curvature(hydro))
 
 
 def _field(hydro: HydroCoefficients, sea: WaveField, src: dict, source_xy: np.ndarray,
@@ -229,12 +320,20 @@ def _field(hydro: HydroCoefficients, sea: WaveField, src: dict, source_xy: np.nd
     r = np.hypot(d[:, 0], d[:, 1])
     alpha = np.arctan2(d[:, 1], d[:, 0])
     w, k = src["omega"], src["k"]
+    args = (hydro, w, src["beta"], src["motion"])
+    bent = src["curvature"]
     if alpha.shape[0] <= hydro.kochin_angles.shape[0]:  # few points: at their angles
-        h_at = pattern(hydro, w, src["beta"], src["motion"], alpha - source_heading)
+        h_at = pattern(*args, alpha - source_heading)
+        c_at = None if bent is None else pattern(*args, alpha - source_heading, bent)
     else:  # many: on the file's angles once, then per component at the points'
         if "pattern" not in src:
-            src["pattern"] = pattern(hydro, w, src["beta"], src["motion"], hydro.kochin_angles)
+            src["pattern"] = pattern(*args, hydro.kochin_angles)
+            src["bend"] = None if bent is None else pattern(*args, hydro.kochin_angles, bent)
         h_at = _at_angles(hydro.kochin_angles, src["pattern"], alpha - source_heading)
+        c_at = (None if bent is None
+                else _at_angles(hydro.kochin_angles, src["bend"], alpha - source_heading))
+    if c_at is not None:
+        h_at = _next_term(h_at, c_at, k[:, None] * r)
     near = hull_radius(hydro) if radius is None else float(radius)
     s = np.clip((r - near) / max(near, 1e-9), 0.0, 1.0)
     taper = s * s * (3.0 - 2.0 * s)

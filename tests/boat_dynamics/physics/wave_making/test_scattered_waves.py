@@ -26,6 +26,7 @@ from boat_dynamics.physics.potential_flow.hydro import (
 )
 from boat_dynamics.physics.wave_making.made_waves import local_wrench
 from boat_dynamics.physics.wave_making.scattered_waves import (
+    far_field,
     far_field_factor,
     hull_radius,
     motion_rao,
@@ -51,22 +52,16 @@ def far():
     return dict(np.load(DATA / "box_far_field.npz"))
 
 
-def _far_points(ref, wi: int) -> np.ndarray:
-    """(N,) the distances at least 20 m and one wavelength out (the far field's range)."""
-    r = ref["distances"]
-    return (r >= 20.0) & (ref["wavenumber"][wi] * r >= 2 * np.pi)
+def _points(ref) -> np.ndarray:
+    """(R * N, 2) m: the reference's field points, ray by ray."""
+    t = np.radians(ref["rays_deg"])[:, None]
+    r = ref["distances"][None, :]
+    return np.stack([r * np.cos(t), r * np.sin(t)], axis=-1).reshape(-1, 2)
 
 
 def _error(model: np.ndarray, capytaine: np.ndarray, keep: np.ndarray) -> float:
-    """max |model - Capytaine| / max |Capytaine| over the rays' far points."""
+    """max |model - Capytaine| / max |Capytaine| over the rays' points ``keep`` (N,)."""
     return float(np.abs(model - capytaine)[:, keep].max() / np.abs(capytaine)[:, keep].max())
-
-
-def _ray_field(ref, wi: int, kochin_rays: np.ndarray) -> np.ndarray:
-    """(R, N) far-field elevations of Kochin values (R,) on the rays."""
-    f = far_field_factor(np.array([[ref["omega"][wi]]]), np.array([[ref["wavenumber"][wi]]]),
-                         ref["distances"], G, math.inf)[0]
-    return kochin_rays[:, None] * f[None, :]
 
 
 def test_shipped_file_carries_the_reference_kochin_functions(box, far):
@@ -80,32 +75,28 @@ def test_shipped_file_carries_the_reference_kochin_functions(box, far):
 
 
 def test_box_far_field_per_problem_against_capytaine(box, far):
-    """Each radiation dof and diffraction heading: within 10 % from 20 m (yaw: 30 %).
+    """Each radiation dof and diffraction heading, from 20 m: within 5 % (yaw 10 %).
 
-    Measured (max over the 7 frequencies with far points, error / largest |eta|): surge 7.7,
-    sway 6.3, heave 3.4, roll 7.8, pitch 5.9, yaw 29.4 %; diffraction 9.0 %. Yaw's pattern
-    (sin 2 theta) is zero on the 0 and 90 deg rays, where its near field is all there is.
+    :func:`far_field` (the 1 / (k r) term included). Measured (error / largest |eta| on the
+    three rays, waves up to 5.8 s): surge 3.4, sway 3.1, heave 3.6, roll 3.1, pitch 3.2,
+    yaw 8.0 %, diffraction 3.9 %; without the 1 / (k r) term 7.7, 6.3, 3.4, 7.8, 5.9, 29 and
+    9.0 % one wavelength out. The 7.9 s wave (98 m long, k r = 1.3 at 20 m) is left out:
+    10-13 % there, yaw 49 %.
     """
-    rays = [int(d // 5) for d in far["rays_deg"]]
+    xy = _points(far)
+    keep = far["distances"] >= 20.0
     worst = np.zeros(7)
-    for wi in range(1, 8):  # the 7.9 s wave's far field starts beyond 60 m
-        keep = _far_points(far, wi)
-        for j in range(6):
-            h = box.kochin_radiation[GRID[wi], j, rays]
-            worst[j] = max(worst[j], _error(_ray_field(far, wi, h), far["eta_radiation"][wi, j],
-                                            keep))
-        for d, b in enumerate([0, 1, 2, 4]):
-            h = box.kochin_diffraction[GRID[wi], b, rays]
-            worst[6] = max(worst[6], _error(_ray_field(far, wi, h),
-                                            far["eta_diffraction"][wi, d], keep))
-    assert np.all(worst[:5] < 0.10), worst
-    assert worst[5] < 0.30 and worst[6] < 0.10, worst
-
-
-def _points(ref) -> np.ndarray:
-    t = np.radians(ref["rays_deg"])[:, None]
-    r = ref["distances"][None, :]
-    return np.stack([r * np.cos(t), r * np.sin(t)], axis=-1).reshape(-1, 2)
+    for wi in range(1, 8):
+        w, k = far["omega"][wi], far["wavenumber"][wi]
+        radiated = far_field(box, box.kochin_radiation[GRID[wi]], w, k, xy, G, math.inf)
+        for j, eta in enumerate(radiated.reshape(6, 3, -1)):
+            worst[j] = max(worst[j], _error(eta, far["eta_radiation"][wi, j], keep))
+        scattered = far_field(box, box.kochin_diffraction[GRID[wi]][[0, 1, 2, 4]], w, k, xy, G,
+                              math.inf)
+        for d, eta in enumerate(scattered.reshape(4, 3, -1)):
+            worst[6] = max(worst[6], _error(eta, far["eta_diffraction"][wi, d], keep))
+    assert np.all(worst[:5] < 0.05), worst
+    assert worst[5] < 0.10 and worst[6] < 0.05, worst
 
 
 def _complex_elevation(hydro, k: float, omega: float, beta: float, xy, **kw) -> np.ndarray:
@@ -117,17 +108,18 @@ def _complex_elevation(hydro, k: float, omega: float, beta: float, xy, **kw) -> 
 
 
 def test_floating_box_in_waves_against_capytaine(box, far):
-    """H_D + sum xi_j H_j of the free box, through :func:`outgoing_elevation`.
+    """H_D + sum xi_j H_j of the free box, through :func:`outgoing_elevation`, from 20 m.
 
-    Against Capytaine's scattered + radiated elevation (its RAOs, which the file's equal):
-    within 11 % from 20 m for waves up to 3 boat lengths (omega >= 2.27 rad/s; measured
-    10.5 %) and 10 % from 40 m for waves up to 5.5 (omega >= 1.68; 9.6 %). Longer waves
-    barely notice the box (it follows them, the scattered and radiated waves nearly cancel):
-    13-26 % from 20 m, the rest near field.
+    Against Capytaine's scattered + radiated elevation (with its RAOs, which the file's
+    equal): within 10 % for waves up to 5.8 s (measured 9.1 %, at 5.8 s: 52 m, 13 boat
+    lengths, where the box follows the wave and makes little) and 6 % up to 4.5 s (5.7 %;
+    0.5-2.6 % from 3.7 s down). Without the 1 / (k r) term: 10.5 % for waves up to 2.8 s
+    only, 13-26 % for longer ones one wavelength out.
     """
     xy = _points(far)
-    worst20, worst40 = 0.0, 0.0
-    for wi in range(3, 8):
+    keep = far["distances"] >= 20.0
+    worst = np.zeros(8)
+    for wi in range(1, 8):
         w, k = far["omega"][wi], far["wavenumber"][wi]
         for d, beta in enumerate(np.radians(far["headings_deg"])):
             xi = motion_rao(box, np.array([w]), np.array([beta]))[0]
@@ -135,22 +127,20 @@ def test_floating_box_in_waves_against_capytaine(box, far):
             model = _complex_elevation(box, k, w, beta, xy).reshape(3, -1)
             capy = (far["eta_diffraction"][wi, d]
                     + np.einsum("j,jrn->rn", far["rao"][wi, d], far["eta_radiation"][wi]))
-            keep = _far_points(far, wi)
-            if wi >= 4:
-                worst20 = max(worst20, _error(model, capy, keep))
-            worst40 = max(worst40, _error(model, capy, keep & (far["distances"] >= 40.0)))
-    assert worst20 < 0.11 and worst40 < 0.10, (worst20, worst40)
+            worst[wi] = max(worst[wi], _error(model, capy, keep))
+    assert worst.max() < 0.10 and worst[2:].max() < 0.06, worst
 
 
-def test_heaving_cylinder_against_capytaine():
-    """The far field of a heaving cylinder's Kochin function: within 10 % (measured 7.9 %)."""
+def test_heaving_cylinder_against_capytaine(box):
+    """A heaving cylinder's far field from 20 m: within 5 % (measured 3.5 %; 10.2 % at 7.9 s)."""
     ref = dict(np.load(DATA / "cylinder_heave.npz"))
-    rays = [int(d // 5) for d in ref["rays_deg"]]
+    xy = _points(ref)
     worst = 0.0
     for wi in range(1, 8):
-        model = _ray_field(ref, wi, ref["kochin_heave"][wi, rays])
-        worst = max(worst, _error(model, ref["eta_heave"][wi], _far_points(ref, wi)))
-    assert worst < 0.10, worst
+        model = far_field(box, ref["kochin_heave"][wi][None], ref["omega"][wi],
+                          ref["wavenumber"][wi], xy, G, math.inf).reshape(3, -1)
+        worst = max(worst, _error(model, ref["eta_heave"][wi], ref["distances"] >= 20.0))
+    assert worst < 0.05, worst
 
 
 @pytest.mark.parametrize("name,tolerance", [
@@ -237,8 +227,9 @@ def _lee_rao(hydro, k: float, w: float, beta: float, me: np.ndarray, other: np.n
 
 
 @pytest.mark.parametrize("wi,heave,roll,tol_heave,tol_roll", [
-    (6, 0.497, 0.457, 0.10, 0.15),  # 1.82 s: the lee box sheltered; model 0.587, 0.587
-    (5, 1.215, 1.168, 0.07, 0.12),  # 2.20 s: amplified; model 1.275, 1.275
+    (6, 0.497, 0.457, 0.05, 0.05),  # 1.82 s: the lee box sheltered; model 0.473, 0.473
+    (5, 1.215, 1.168, 0.05, 0.10),  # 2.20 s: amplified; model 1.235, 1.235
+    (7, 0.741, 0.552, 0.05, 0.25),  # 1.45 s: model 0.734, 0.734
 ])
 def test_lee_box_in_beam_seas_against_the_pair(box, wi, heave, roll, tol_heave, tol_roll):
     """Beam seas toward +y: the port box in the lee of the starboard one, 6 m apart.
@@ -247,7 +238,8 @@ def test_lee_box_in_beam_seas_against_the_pair(box, wi, heave, roll, tol_heave, 
     solution (box_pair.npz's figures in the parameters): same side of 1, within the stated
     tolerances. A plane wave from the weather box travels the incident's way, so the model
     scales every dof alike; the weather box's own change, from the lee box's first-order
-    wave, is not this model's strength (1.8 s: heave 0.39 against Capytaine's 0.98).
+    wave, is not this model's strength (1.8 s: heave 0.48 against Capytaine's 0.98). Without
+    the far field's 1 / (k r) term (k r = 7.4 at 1.8 s): 0.587 at 1.8 s, 1.275 at 2.2 s.
     """
     pair = dict(np.load(DATA / "box_pair.npz"))
     k, w = float(pair["wavenumber"][wi]), float(pair["omega"][wi])
@@ -264,7 +256,9 @@ def test_head_seas_neighbour_rolls_the_box(box):
     """Head seas, 2.2 s: each box rolls in its neighbour's waves (alone it would not).
 
     12-dof solution: port box roll 0.355 rad/m, heave 1.218 times the lone box's; the model:
-    0.319 rad/m (-10 %), same phase within 0.5 rad, heave 1.195.
+    0.259 rad/m (-27 %), phase 0.25 rad behind, heave 1.164 (without the far field's
+    1 / (k r) term: 0.319 rad/m and 1.195). The 4 m box 6 m away spans +-18 deg of the
+    source's pattern, which one plane wave at its centre stands for.
     """
     pair = dict(np.load(DATA / "box_pair.npz"))
     wi = 5
@@ -272,10 +266,10 @@ def test_head_seas_neighbour_rolls_the_box(box):
     with_made, alone = _lee_rao(box, k, w, math.pi, np.array([0.0, 3.0]), np.array([0.0, -3.0]))
     capytaine = pair["rao_pair"][wi, 1, 1]
     assert abs(alone[3]) < 1e-6
-    assert abs(with_made[3]) == pytest.approx(abs(capytaine[3]), rel=0.15)
-    assert abs(np.angle(with_made[3] / capytaine[3])) < 0.5
+    assert abs(with_made[3]) == pytest.approx(abs(capytaine[3]), rel=0.30)
+    assert abs(np.angle(with_made[3] / capytaine[3])) < 0.4
     assert abs(with_made[2]) / abs(alone[2]) == pytest.approx(
-        abs(capytaine[2]) / abs(pair["rao_single"][wi, 1, 2]), abs=0.05)
+        abs(capytaine[2]) / abs(pair["rao_single"][wi, 1, 2]), abs=0.07)
 
 
 def test_near_field_is_zero_and_far_field_decays(box):
@@ -283,10 +277,11 @@ def test_near_field_is_zero_and_far_field_decays(box):
     sea = WaveField((WaveComponent(0.5, 2 * np.pi / 1.24, math.pi / 2),))
     radius = hull_radius(box)
     assert radius == pytest.approx(math.hypot(2.0, 1.0), rel=0.1)
-    xy = np.array([[0.0, 0.5 * radius], [0.0, 30.0], [0.0, 120.0]])
+    xy = np.array([[0.0, 0.5 * radius], [0.0, 30.0], [0.0, 120.0], [0.0, 1e3], [0.0, 4e3]])
     waves = outgoing_waves(box, sea, np.zeros(2), 0.0, xy, 0.0)
     assert waves[0].count == 0
-    assert waves[1].amplitude[0] / waves[2].amplitude[0] == pytest.approx(2.0, rel=1e-9)
+    assert waves[1].amplitude[0] / waves[2].amplitude[0] == pytest.approx(2.0, rel=0.02)
+    assert waves[3].amplitude[0] / waves[4].amplitude[0] == pytest.approx(2.0, rel=1e-3)
     assert waves[1].direction[0] == pytest.approx(math.pi / 2)
     bare = replace(box, kochin_angles=None, kochin_radiation=None, kochin_diffraction=None)
     assert not bare.has_kochin and "makes no radiated or scattered waves" in no_waves_note(bare)
