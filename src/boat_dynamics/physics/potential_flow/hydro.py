@@ -20,14 +20,15 @@ from __future__ import annotations
 import hashlib
 import zipfile
 from dataclasses import dataclass, replace
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DOFS", "ESTIMATE_REFERENCE", "SHIPPED_COEFFICIENTS", "GapMode", "HydroCoefficients",
-           "HydroFileError", "NarrowPeak", "coefficient_directories", "estimate",
-           "find_coefficients", "froude_scaled", "hydro_key", "load_coefficients", "moved",
-           "narrow_peaks"]
+__all__ = ["DOFS", "ESTIMATE_REFERENCE", "KOCHIN_HARMONICS", "SHIPPED_COEFFICIENTS", "GapMode",
+           "HydroCoefficients", "HydroFileError", "NarrowPeak", "coefficient_directories",
+           "estimate", "find_coefficients", "froude_scaled", "harmonic_curvature", "hydro_key",
+           "load_coefficients", "moved", "narrow_peaks"]
 
 #: The coefficient files shipped with boatsim (its scenarios' hulls), named ``*_<key>.npz``.
 SHIPPED_COEFFICIENTS = Path(__file__).resolve().parents[2] / "data" / "hydro"
@@ -127,6 +128,26 @@ class HydroCoefficients:
         """True when the file carries Kochin functions (the boat can make waves)."""
         return self.kochin_angles is not None
 
+    @cached_property
+    def kochin_curvature(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """-d^2 H / d theta^2 of the Kochin functions, harmonics |n| <= KOCHIN_HARMONICS.
+
+        H(theta) = sum_n h_n e^{i n theta} gives sum_n n^2 h_n e^{i n theta} (FFT over the
+        file's angles; the higher harmonics, noise that the near field would amplify, are
+        left out: tests/data/wavemaking/README.md). Computed once, when first asked
+        (:mod:`boat_dynamics.physics.wave_making.scattered_waves`' 1 / (k r) term).
+
+        Returns:
+            (W, 6, T) radiation and (W, D, T) diffraction tables, as the file's; None without
+            Kochin functions or unless their angles are uniform over 2 pi.
+        """
+        theta = self.kochin_angles
+        if theta is None or not np.allclose(np.diff(theta), 2 * np.pi / theta.shape[0],
+                                            rtol=0.0, atol=1e-6):
+            return None
+        return (harmonic_curvature(self.kochin_radiation),
+                harmonic_curvature(self.kochin_diffraction))
+
     def added_mass_at(self, omega: float) -> np.ndarray:
         """(6, 6) A at ``omega`` (linear in omega between grid points, clamped at the ends)."""
         return _interp(self.omega, self.added_mass, omega)
@@ -175,6 +196,19 @@ class HydroCoefficients:
 
 #: The dofs that change sign when a wave's direction is mirrored about the x axis.
 _MIRRORED = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
+
+
+#: The Kochin functions' harmonics the far field's 1 / (k r) term keeps
+#: (:attr:`HydroCoefficients.kochin_curvature`).
+KOCHIN_HARMONICS = 8
+
+
+def harmonic_curvature(table: np.ndarray) -> np.ndarray:
+    """sum_n n^2 h_n e^{i n theta}, |n| <= :data:`KOCHIN_HARMONICS`, of (..., T) samples."""
+    t = table.shape[-1]
+    n = np.fft.fftfreq(t, 1.0 / t)
+    weight = np.where(np.abs(n) <= KOCHIN_HARMONICS, n**2, 0.0)
+    return np.fft.ifft(np.fft.fft(table, axis=-1) * weight, axis=-1)
 
 
 def _bilinear(omegas: np.ndarray, directions: np.ndarray, table: np.ndarray,

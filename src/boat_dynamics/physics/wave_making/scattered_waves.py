@@ -61,20 +61,20 @@ import math
 
 import numpy as np
 
-from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
+from boat_dynamics.physics.potential_flow.hydro import (
+    KOCHIN_HARMONICS,
+    HydroCoefficients,
+    harmonic_curvature,
+)
 from boat_dynamics.physics.wave_making.made_waves import LocalWaves
 from ocean_sim.physics.waves import WaveField
 
 #: Points per block of :func:`outgoing_elevation`.
 _BLOCK = 128
 #: The Kochin functions' harmonics the 1 / (k r) term of the far field keeps.
-HARMONICS = 8
+HARMONICS = KOCHIN_HARMONICS
 #: The k r below which that term is held at its value there (it is an asymptotic series).
 MIN_KR = 2.0
-#: :func:`curvature`'s tables of the last few files, by the identity of their Kochin arrays
-#: (the arrays themselves kept beside them, so an identity is never reused while cached).
-_CURVATURES: dict[tuple[int, int], tuple] = {}
-_KEPT = 32
 
 __all__ = ["HARMONICS", "MIN_KR", "curvature", "far_field", "far_field_factor", "hull_radius",
            "motion_rao", "no_waves_note", "outgoing_elevation", "outgoing_waves", "pattern"]
@@ -216,33 +216,12 @@ def pattern(hydro: HydroCoefficients, omega: np.ndarray, direction: np.ndarray,
 def curvature(hydro: HydroCoefficients) -> tuple[np.ndarray, np.ndarray] | None:
     """-d^2 H / d theta^2 of the file's Kochin functions, harmonics |n| <= :data:`HARMONICS`.
 
-    H(theta) = sum_n h_n e^{i n theta} gives sum_n n^2 h_n e^{i n theta} (FFT over the
-    file's angles; the higher harmonics, noise that the near field would amplify, are left
-    out: tests/data/wavemaking/README.md). None unless the angles are uniform over 2 pi.
+    :attr:`HydroCoefficients.kochin_curvature` (computed by the coefficients once).
 
     Returns:
-        (W, 6, T) radiation and (W, D, T) diffraction tables, as the file's. Computed once
-        per pair of tables (kept, with the tables, for the last :data:`_KEPT` files).
+        (W, 6, T) radiation and (W, D, T) diffraction tables, as the file's, or None.
     """
-    key = (id(hydro.kochin_radiation), id(hydro.kochin_diffraction))
-    if key in _CURVATURES:  # the arrays are alive in it: their identities are theirs
-        return _CURVATURES[key][2]
-    theta = hydro.kochin_angles
-    bent = None
-    if np.allclose(np.diff(theta), 2 * np.pi / theta.shape[0], rtol=0.0, atol=1e-6):
-        bent = _bent(hydro.kochin_radiation), _bent(hydro.kochin_diffraction)
-    if len(_CURVATURES) >= _KEPT:
-        _CURVATURES.pop(next(iter(_CURVATURES)))
-    _CURVATURES[key] = (hydro.kochin_radiation, hydro.kochin_diffraction, bent)
-    return bent
-
-
-def _bent(table: np.ndarray) -> np.ndarray:
-    """sum_n n^2 h_n e^{i n theta}, |n| <= :data:`HARMONICS`, of (..., T) uniform samples."""
-    t = table.shape[-1]
-    n = np.fft.fftfreq(t, 1.0 / t)
-    weight = np.where(np.abs(n) <= HARMONICS, n**2, 0.0)
-    return np.fft.ifft(np.fft.fft(table, axis=-1) * weight, axis=-1)
+    return hydro.kochin_curvature
 
 
 def _next_term(h: np.ndarray, bend: np.ndarray, kr: np.ndarray) -> np.ndarray:
@@ -275,8 +254,8 @@ def far_field(hydro: HydroCoefficients, table: np.ndarray, omega: float, k: floa
     r = np.hypot(xy[:, 0], xy[:, 1])
     alpha = np.arctan2(xy[:, 1], xy[:, 0])
     theta = hydro.kochin_angles
-    h = _next_term(_at_angles(theta, table, alpha), _at_angles(theta, _bent(table), alpha),
-                   k * r)
+    bend = _at_angles(theta, harmonic_curvature(table), alpha)
+    h = _next_term(_at_angles(theta, table, alpha), bend, k * r)
     return h * far_field_factor(np.array([[omega]]), np.array([[k]]), r, gravity, depth)
 
 
