@@ -43,6 +43,7 @@ from boat_dynamics.physics.wave_making.interaction import made_waves_wrench
 from boat_dynamics.physics.world.obstacles import World
 from ocean_sim.physics.constants import AIR_DENSITY
 from ocean_sim.physics.environment import Environment
+from ocean_sim.physics.waves import WaveField
 
 __all__ = ["forces", "previous_swept", "touches_of"]
 
@@ -138,7 +139,7 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
         total = total + bump
     made = Wrench(np.zeros((b, 3)), np.zeros((b, 3)))
     if system.made_waves is not None:  # boats that feel each other's waves
-        made = _made_waves(system, state, rot, environment)
+        made = _made_waves(system, state, rot, environment, contact.sea)
         total = total + made
     return (FleetForces(buoyancy=buoy, damping=damp, drag=drag, thrust=push, rudder=steer,
                         diffraction=scattered, slamming=slam, mooring=tether, wind=blow,
@@ -147,7 +148,7 @@ def forces(system: System, state: FleetState, inputs: FleetInputs, contact: Cont
 
 
 def _made_waves(system: System, state: FleetState, rot: np.ndarray,
-                environment: Environment | None) -> Wrench:
+                environment: Environment | None, sea: WaveField) -> Wrench:
     """(B, 3) the waves other boats make: their force and torque, body frames."""
     ref = state.position - np.einsum("bij,bj->bi", rot, system.center_of_mass)
     over_ground = np.einsum("bij,bj->bi", rot, state.velocity)[:, :2]
@@ -155,7 +156,7 @@ def _made_waves(system: System, state: FleetState, rot: np.ndarray,
     if environment is not None and environment.current_speed > 0.0:
         through = over_ground - environment.current[:2]
     return made_waves_wrench(system.made_waves, ref[:, :2], np.arctan2(rot[:, 1, 0], rot[:, 0, 0]),
-                             over_ground, through, state.t, system.count)
+                             over_ground, through, state.t, system.count, sea)
 
 
 def touches_of(system: System, state: FleetState, contact: Contact, world: World) -> Touches:

@@ -1,9 +1,11 @@
 """Boats that feel each other's waves: the made waves' force on every boat of a fleet.
 
-Each boat that makes waves (``made_waves``: its Kelvin wake, :mod:`.kelvin_wake`) is a
-source; each boat with potential-flow coefficients is a receiver, and feels the waves of
-every other source as local plane waves through its own Froude-Krylov and diffraction
-transfer functions (:mod:`.made_waves`, the wide-spacing approximation). Linear
+Each boat that makes waves (``made_waves``: its Kelvin wake at speed, :mod:`.kelvin_wake`;
+the waves it radiates and scatters in the sea, from its file's Kochin functions,
+:mod:`.scattered_waves`) is a source; each boat with potential-flow coefficients is a
+receiver, and feels the waves of every other source as local plane waves through its own
+Froude-Krylov and diffraction transfer functions (:mod:`.made_waves`, the wide-spacing
+approximation). Linear
 superposition: the made waves add to the sea's components and to each other; a receiver's
 own waves are in its radiation and diffraction forces already. A receiver ignores made
 waves shorter than its ``min_wavelength``.
@@ -13,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal, get_args
 
 import numpy as np
@@ -27,13 +29,16 @@ from boat_dynamics.physics.wave_making.kelvin_wake import (
     wake_elevation,
 )
 from boat_dynamics.physics.wave_making.made_waves import local_wrenches
+from boat_dynamics.physics.wave_making.scattered_waves import outgoing_waves
+from ocean_sim.physics.waves import WaveComponent, WaveField
 
 __all__ = ["MADE_WAVES_MODELS", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
            "made_waves_build", "made_waves_elevation", "made_waves_wrench"]
 
 #: What waves a boat makes that the others feel: ``wake``, its Kelvin wake at speed;
-#: ``none``. (``all``: every kind this version models.)
-MadeWavesModel = Literal["all", "wake", "none"]
+#: ``scattered``, the waves it radiates and scatters in the sea (its file's Kochin
+#: functions); ``all``, both; ``none``.
+MadeWavesModel = Literal["all", "wake", "scattered", "none"]
 MADE_WAVES_MODELS: tuple[MadeWavesModel, ...] = get_args(MadeWavesModel)
 
 
@@ -56,6 +61,11 @@ class MadeWaves:
         gravity: g, m/s^2.
         hydro_groups: each coefficient set of the receivers with (K,) int, the sorted rows
             of ``receivers`` that have it (their wrenches are evaluated together).
+        scatterers: (C,) int, the boats that radiate and scatter waves (coefficients with
+            Kochin functions).
+        viscous: (C, 6) their linear damping, added to the radiation damping of their RAOs.
+        scatterer_wavelength: (C,) m, their wave filters (the components they answer).
+        scatterer_hydro: their coefficients.
     """
 
     ships: tuple[tuple[ThinShip, np.ndarray], ...]
@@ -64,6 +74,10 @@ class MadeWaves:
     min_wavelength: np.ndarray
     gravity: float
     hydro_groups: tuple[tuple[HydroCoefficients, np.ndarray], ...] = ()
+    scatterers: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    viscous: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
+    scatterer_wavelength: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    scatterer_hydro: tuple[HydroCoefficients, ...] = ()
 
 
 def made_waves_build(params: Sequence) -> MadeWaves | None:
@@ -76,7 +90,9 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
     for i, p in enumerate(params):
         if p.made_waves in ("all", "wake") and p.thin_ship is not None:
             makers.setdefault(id(p.thin_ship), (p.thin_ship, []))[1].append(i)
-    sources = [i for _, members in makers.values() for i in members]
+    scatterers = [i for i, p in enumerate(params) if p.made_waves in ("all", "scattered")
+                  and p.hydro is not None and p.hydro.has_kochin]
+    sources = [i for _, members in makers.values() for i in members] + scatterers
     receivers = [i for i, p in enumerate(params) if p.hydro is not None]
     if not any(r != s for r in receivers for s in sources):
         return None
@@ -89,7 +105,12 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
                      np.array([params[i].min_wavelength for i in receivers], dtype=float),
                      float(params[0].gravity),
                      tuple((hydro[rows[0]], np.array(rows, dtype=np.intp))
-                           for rows in groups.values()))
+                           for rows in groups.values()),
+                     np.array(scatterers, dtype=np.intp),
+                     np.array([params[i].damping_linear for i in scatterers],
+                              dtype=float).reshape(-1, 6),
+                     np.array([params[i].min_wavelength for i in scatterers], dtype=float),
+                     tuple(params[i].hydro for i in scatterers))
 
 
 def _courses(velocity_world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -133,9 +154,79 @@ def _wakes_at(made: MadeWaves, reference_xy: np.ndarray, through_water: np.ndarr
     return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
 
 
+def _scattered_at(made: MadeWaves, reference_xy: np.ndarray, heading: np.ndarray,
+                  sea: WaveField, t: float) -> tuple[np.ndarray, ...] | None:
+    """Every radiated and scattered wave at every other receiver (:func:`_wakes_at`'s rows).
+
+    Each scatterer's answer to the sea's components acting on it
+    (:func:`.scattered_waves.outgoing_waves`), at the receivers other than itself; then, once,
+    its answer to those of the others' waves that reach it (:func:`_passed_on`): multiple
+    scattering to second order, which brings a boat's own waves back to it off its
+    neighbours.
+    """
+    if made.scatterers.shape[0] == 0 or not sea.components:
+        return None
+    first = [_outgoing(made, c, sea.filtered(float(made.scatterer_wavelength[c])),
+                       reference_xy, heading, t) for c in range(made.scatterers.shape[0])]
+    found = [f for f in first if f is not None]
+    if not found:
+        return None
+    waves = tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
+    second = [_passed_on(made, c, waves, reference_xy, heading, t, sea.gravity, sea.depth)
+              for c in range(made.scatterers.shape[0])]
+    found += [f for f in second if f is not None]
+    return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
+
+
+def _outgoing(made: MadeWaves, c: int, acting: WaveField, reference_xy: np.ndarray,
+              heading: np.ndarray, t: float) -> tuple[np.ndarray, ...] | None:
+    """Scatterer c's waves in ``acting`` at the other receivers, as :func:`_wakes_at`'s rows."""
+    s = made.scatterers[c]
+    rows = np.flatnonzero(made.receivers != s)
+    if rows.shape[0] == 0 or not acting.components:
+        return None
+    waves = outgoing_waves(made.scatterer_hydro[c], acting, reference_xy[s], float(heading[s]),
+                           reference_xy[made.receivers[rows]], t, viscous=made.viscous[c])
+    found = []
+    for j, w in zip(rows, waves, strict=True):
+        keep = 2.0 * math.pi / np.maximum(w.wavenumber, 1e-300) >= made.min_wavelength[j]
+        if w.count and keep.any():
+            found.append((np.full(int(keep.sum()), j), w.amplitude[keep], w.omega[keep],
+                          w.wavenumber[keep], w.direction[keep], w.phase[keep]))
+    if not found:
+        return None
+    return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
+
+
+def _passed_on(made: MadeWaves, c: int, waves: tuple[np.ndarray, ...],
+               reference_xy: np.ndarray, heading: np.ndarray, t: float, gravity: float,
+               depth: float) -> tuple[np.ndarray, ...] | None:
+    """Scatterer c's answer to the made waves that reach it, as :func:`_outgoing` gives it.
+
+    The plane waves at its reference point (``waves``' rows of it) become the components of
+    a sea of their own: a cos(k D . r - omega t + phi) with phi such that each has its phase
+    at the scatterer at ``t``.
+    """
+    s = made.scatterers[c]
+    row = np.flatnonzero(made.receivers == s)
+    rows, amplitude, omega, k, direction, phase = waves
+    mine = rows == row[0] if row.shape[0] else np.zeros(rows.shape, dtype=bool)
+    mine &= 2.0 * math.pi / np.maximum(k, 1e-300) >= made.scatterer_wavelength[c]
+    if not mine.any():
+        return None
+    d = np.stack([np.cos(direction[mine]), np.sin(direction[mine])], axis=1)
+    phi = phase[mine] - k[mine] * (d @ reference_xy[s]) + omega[mine] * t
+    received = WaveField(tuple(WaveComponent(float(a), 2.0 * math.pi / float(q), float(b), 0.0,
+                                             float(f))
+                               for a, q, b, f in zip(amplitude[mine], k[mine],
+                                                     direction[mine], phi, strict=True)),
+                         gravity=gravity, depth=depth)
+    return _outgoing(made, c, received, reference_xy, heading, t)
+
+
 def made_waves_wrench(made: MadeWaves, reference_xy: np.ndarray, heading: np.ndarray,
                       velocity_world: np.ndarray, through_water: np.ndarray, t: float,
-                      count: int) -> Wrench:
+                      count: int, sea: WaveField | None = None) -> Wrench:
     """(B, 3) force and (B, 3) torque of the waves other boats make, body frames.
 
     Args:
@@ -146,11 +237,17 @@ def made_waves_wrench(made: MadeWaves, reference_xy: np.ndarray, heading: np.nda
         through_water: (B, 2) m/s, the same through the water (the current taken off).
         t: s.
         count: B.
+        sea: the sea the boats are in (the scatterers answer it), or None: calm.
     """
     force, torque = np.zeros((count, 3)), np.zeros((count, 3))
-    waves = _wakes_at(made, reference_xy, through_water)
-    if waves is None:
+    parts = [w for w in (_wakes_at(made, reference_xy, through_water),
+                         None if sea is None else _scattered_at(made, reference_xy, heading,
+                                                                sea, t))
+             if w is not None]
+    if not parts:
         return Wrench(force, torque)
+    waves = parts[0] if len(parts) == 1 else tuple(
+        np.concatenate(p) for p in zip(*parts, strict=True))
     rows, amplitude, omega, k, direction, phase = waves
     for hydro, members in made.hydro_groups:
         mine = np.isin(rows, members)
