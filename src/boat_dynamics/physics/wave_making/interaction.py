@@ -29,10 +29,10 @@ from boat_dynamics.physics.wave_making.kelvin_wake import (
     wake_elevation,
 )
 from boat_dynamics.physics.wave_making.made_waves import local_wrenches
-from boat_dynamics.physics.wave_making.scattered_waves import outgoing_waves
+from boat_dynamics.physics.wave_making.scattered_waves import hull_radius, outgoing_waves
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
-__all__ = ["MADE_WAVES_MODELS", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
+__all__ = ["MADE_WAVES_MODELS", "SCATTER_REACH", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
            "made_waves_build", "made_waves_elevation", "made_waves_wrench"]
 
 #: What waves a boat makes that the others feel: ``wake``, its Kelvin wake at speed;
@@ -46,6 +46,14 @@ MADE_WAVES_MODELS: tuple[MadeWavesModel, ...] = get_args(MadeWavesModel)
 #: where its transverse waves have a third of their height 16 m behind it). A bound on the
 #: cost, which grows with the pairs of boats within reach of each other.
 WAKE_REACH = 40.0
+
+
+#: How far a boat's radiated and scattered waves are felt, in hull radii (the half-diagonal
+#: of its waterplane, :func:`.scattered_waves.hull_radius`: 8 x 2.2 = 18 m for the default
+#: box, where k r is 18 for a 2 s wave and their amplitude has fallen to a third of its value
+#: at 2 radii). A bound on the cost: each scatterer in reach of another answers the sea and
+#: then the waves it receives (a fleet 20 m apart pays nothing).
+SCATTER_REACH = 8.0
 
 
 @dataclass(frozen=True)
@@ -66,6 +74,8 @@ class MadeWaves:
         viscous: (C, 6) their linear damping, added to the radiation damping of their RAOs.
         scatterer_wavelength: (C,) m, their wave filters (the components they answer).
         scatterer_hydro: their coefficients.
+        scatter_reach: (C,) m, how far their waves are felt (:data:`SCATTER_REACH` hull
+            radii).
     """
 
     ships: tuple[tuple[ThinShip, np.ndarray], ...]
@@ -78,6 +88,7 @@ class MadeWaves:
     viscous: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
     scatterer_wavelength: np.ndarray = field(default_factory=lambda: np.zeros(0))
     scatterer_hydro: tuple[HydroCoefficients, ...] = ()
+    scatter_reach: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 def made_waves_build(params: Sequence) -> MadeWaves | None:
@@ -110,7 +121,9 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
                      np.array([params[i].damping_linear for i in scatterers],
                               dtype=float).reshape(-1, 6),
                      np.array([params[i].min_wavelength for i in scatterers], dtype=float),
-                     tuple(params[i].hydro for i in scatterers))
+                     tuple(params[i].hydro for i in scatterers),
+                     np.array([SCATTER_REACH * hull_radius(params[i].hydro) for i in scatterers],
+                              dtype=float))
 
 
 def _courses(velocity_world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -167,22 +180,32 @@ def _scattered_at(made: MadeWaves, reference_xy: np.ndarray, heading: np.ndarray
     if made.scatterers.shape[0] == 0 or not sea.components:
         return None
     first = [_outgoing(made, c, sea.filtered(float(made.scatterer_wavelength[c])),
-                       reference_xy, heading, t) for c in range(made.scatterers.shape[0])]
+                       reference_xy, heading, t) for c in range(made.scatterers.shape[0])
+             if _reaches(made, c, reference_xy)]
     found = [f for f in first if f is not None]
     if not found:
         return None
     waves = tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
     second = [_passed_on(made, c, waves, reference_xy, heading, t, sea.gravity, sea.depth)
-              for c in range(made.scatterers.shape[0])]
+              for c in range(made.scatterers.shape[0]) if _reaches(made, c, reference_xy)]
     found += [f for f in second if f is not None]
     return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
+
+
+def _reaches(made: MadeWaves, c: int, reference_xy: np.ndarray) -> bool:
+    """Whether another receiver is within scatterer c's reach (:data:`SCATTER_REACH`)."""
+    d = reference_xy[made.receivers] - reference_xy[made.scatterers[c]]
+    near = np.hypot(d[:, 0], d[:, 1]) <= made.scatter_reach[c]
+    return bool(np.any(near & (made.receivers != made.scatterers[c])))
 
 
 def _outgoing(made: MadeWaves, c: int, acting: WaveField, reference_xy: np.ndarray,
               heading: np.ndarray, t: float) -> tuple[np.ndarray, ...] | None:
     """Scatterer c's waves in ``acting`` at the other receivers, as :func:`_wakes_at`'s rows."""
     s = made.scatterers[c]
-    rows = np.flatnonzero(made.receivers != s)
+    d = reference_xy[made.receivers] - reference_xy[s]
+    rows = np.flatnonzero((made.receivers != s)
+                          & (np.hypot(d[:, 0], d[:, 1]) <= made.scatter_reach[c]))
     if rows.shape[0] == 0 or not acting.components:
         return None
     waves = outgoing_waves(made.scatterer_hydro[c], acting, reference_xy[s], float(heading[s]),
