@@ -43,7 +43,16 @@ def sim(boatsim, probe):
     assert run.stop() == 0
 
 
-def test_topic_list_info_echo_and_hz(sim, cli):
+def test_the_verbs_against_one_running_simulation(sim, probe, cli):
+    # one simulation for every verb (its start-up is most of the cost): the topic verbs first
+    # (`topic info` counts /alpha/cmd_thrust's publishers before `topic pub` makes one), the
+    # parameters last (`param set` changes cmd_timeout)
+    _topic_list_info_echo_and_hz(cli)
+    _topic_pub_drives_a_boat(probe, cli)
+    _node_list_and_params(cli)
+
+
+def _topic_list_info_echo_and_hz(cli):
     listed = cli("topic", "list", "-t").stdout.splitlines()
     assert "/alpha/odom [nav_msgs/msg/Odometry]" in listed
     assert "/ocean/wave_field [boat_msgs/msg/WaveField]" in listed
@@ -69,7 +78,7 @@ def test_topic_list_info_echo_and_hz(sim, cli):
     assert missing.returncode == 1 and "Unknown topic '/nosuch'" in missing.stderr
 
 
-def test_topic_pub_drives_a_boat(sim, probe, cli):
+def _topic_pub_drives_a_boat(probe, cli):
     got = []
     probe.node.create_subscription(Float64, "/alpha/cmd_thrust", got.append, 10)
     out = cli("topic", "pub", "/alpha/cmd_thrust", "std_msgs/msg/Float64", "{data: 0.7}",
@@ -84,7 +93,7 @@ def test_topic_pub_drives_a_boat(sim, probe, cli):
     assert bad.returncode == 1 and "dta: Float64 has no such field" in bad.stderr
 
 
-def test_node_list_and_params(sim, cli):
+def _node_list_and_params(cli):
     nodes = cli("node", "list").stdout.splitlines()
     assert {"/boat_dynamics", "/ocean", "/ocean_surface"} <= set(nodes)
 
