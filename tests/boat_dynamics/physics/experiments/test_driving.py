@@ -95,6 +95,14 @@ def _boats() -> list[tuple[str, str]]:
     return [(scenario, name) for scenario, name, sea in _cases() if sea == "own"]
 
 
+def _drives() -> list[tuple[str, str, str]]:
+    """(scenario, boat name, "own" or "own+rough") of :func:`_cases`, one test per boat."""
+    seas: dict[tuple[str, str], list[str]] = {}
+    for scenario, name, sea in _cases():
+        seas.setdefault((scenario, name), []).append(sea)
+    return [(scenario, name, "+".join(s)) for (scenario, name), s in seas.items()]
+
+
 def _cases() -> list[tuple[str, str, str]]:
     """(scenario, boat name, sea) of each drive: :func:`_boats`' in their own seas, and each
     distinct boat (at its step rate and water depth) once in its rough sea (:func:`rough_sea`
@@ -211,24 +219,21 @@ def _judge(track, sea_name: str, speed: float, rate: float) -> list[str]:
     return problems
 
 
-@cache
-def _calm_of(scenario: str, name: str) -> tuple[float, float, list[str]]:
-    """:func:`_calm` of a shipped boat, run once per process for both of its seas."""
-    return _calm(*_boat(scenario, name))
-
-
 # Simulation time decides these runs; the wall time (60-250 s each on a busy 2-core machine)
-# is bounded only against a hang, above pyproject's 300 s for ordinary tests.
+# is bounded only against a hang, above pyproject's 300 s for ordinary tests. Both seas in one
+# test: its calm-water reference is run once (as two tests, own and rough, pytest-xdist could
+# hand them to its two workers, and each ran it).
 @pytest.mark.timeout(1200)
-@pytest.mark.parametrize(("scenario", "name", "sea_name"), _cases())
-def test_a_shipped_boat_driven_through_waves_behaves_like_a_boat(scenario, name, sea_name):
+@pytest.mark.parametrize(("scenario", "name", "seas"), _drives())
+def test_a_shipped_boat_driven_through_waves_behaves_like_a_boat(scenario, name, seas):
     boat, sc = _boat(scenario, name)
-    speed, rate, calm_problems = _calm_of(scenario, name)
+    speed, rate, problems = _calm(boat, sc)
     assert speed > 0.5 and rate > math.radians(1.0), (speed, rate)
-    sea = sc.sea if sea_name == "own" else rough_sea(boat.params.hull.length, sc.sea.depth)
-    track = sea_trials(boat, sea, _orders(boat.params), DURATION, 1.0 / sc.simulation.rate_hz)
-    problems = (calm_problems if sea_name == "own" else []) + _judge(track, sea_name, speed,
-                                                                     rate)
+    for sea_name in seas.split("+"):
+        sea = sc.sea if sea_name == "own" else rough_sea(boat.params.hull.length, sc.sea.depth)
+        track = sea_trials(boat, sea, _orders(boat.params), DURATION,
+                           1.0 / sc.simulation.rate_hz)
+        problems += _judge(track, sea_name, speed, rate)
     assert not problems, f"{scenario} {name or 'root'}:\n" + "\n".join(problems)
 
 
