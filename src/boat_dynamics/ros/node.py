@@ -53,6 +53,7 @@ from boat_dynamics.physics.scenario.specs import (
     SimulationSettings,
     WrenchTopics,
 )
+from boat_dynamics.physics.wave_making.scattered_waves import no_waves_note
 from boat_dynamics.ros.collisions import CollisionEvents
 from boat_dynamics.ros.outputs import FleetPublisher, StartInterrupted
 from boat_dynamics.ros.reset import ResetError, ResetPlan, check_request, placed_state
@@ -172,6 +173,11 @@ def _boat_lines(spec: BoatSpec) -> list[tuple[str, str]]:
                               f"{np.round(line.anchor, 2).tolist()} m; no command topics"))
     elif spec.commands is not None:
         lines.append(("info", "scripted commands; ignoring command topics"))
+    hydro = spec.params.hydro
+    if spec.params.made_waves in ("all", "scattered") and hydro is not None:
+        note = no_waves_note(hydro)
+        if note is not None:
+            lines.append(("warning", note))
     memory = spec.params.radiation_memory
     if memory is not None and memory.error > POOR_FIT:
         lines.append(("warning",
