@@ -25,8 +25,10 @@ from boat_dynamics.physics.body.hull import box_mesh
 from boat_dynamics.physics.core.model import BoatParams
 from boat_dynamics.physics.core.tuning import equilibrium_height
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
+from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.wave_making.interaction import made_waves_elevation
 from boat_dynamics.physics.wave_making.kelvin_wake import ThinShip, thin_ship
+from boat_dynamics.physics.wave_making.scattered_waves import outgoing_elevation
 from ocean_sim.physics.constants import GRAVITY
 from ocean_sim.physics.waves import WaveField, sample_surface
 
@@ -80,6 +82,8 @@ class HullShape:
         ship: the hull below its waterline, whose Kelvin wake is drawn
             (:mod:`boat_dynamics.physics.wave_making.kelvin_wake`), or None: no wake (a
             boat that makes none, ``hydrodynamics.made_waves``).
+        hydro: its coefficients with Kochin functions, whose radiated and scattered waves are
+            drawn (:mod:`boat_dynamics.physics.wave_making.scattered_waves`), or None.
     """
 
     vertices: np.ndarray
@@ -88,6 +92,7 @@ class HullShape:
     force_scale: float
     arrow_radius: float
     ship: ThinShip | None = None
+    hydro: HydroCoefficients | None = None
 
 
 def hull_shape(params: BoatParams | None) -> HullShape:
@@ -97,7 +102,7 @@ def hull_shape(params: BoatParams | None) -> HullShape:
     a twentieth of its weight when it has none. ``params`` None: the default 4 x 2 x 1
     m box of 4100 kg, 2 kN (a boat the scenario given to the viewer does not have).
     """
-    ship = None
+    ship, hydro = None, None
     if params is None:
         from boat_dynamics.physics.body.hull import BoxHull
 
@@ -112,10 +117,12 @@ def hull_shape(params: BoatParams | None) -> HullShape:
             thrust = params.mass * params.gravity / 20.0
         if params.made_waves in ("all", "wake"):
             ship = params.thin_ship or thin_ship(mesh, equilibrium_height(params))
+        if params.made_waves in ("all", "scattered") and params.hydro is not None:
+            hydro = params.hydro if params.hydro.has_kochin else None
     vertices = np.asarray(mesh.vertices, dtype=float)
     origin = np.array([com[0], com[1], vertices[:, 2].max() + 0.1 * length])
     return HullShape(vertices, np.asarray(mesh.faces), origin, length / thrust, 0.03 * length,
-                     ship)
+                     ship, hydro)
 
 
 def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resolution: float,
@@ -189,6 +196,7 @@ class Scene:
         self._boats: dict[str, int] = {}  # name -> colour index, once drawn
         self._positions: dict[str, np.ndarray] = {}  # the latest, (3,) m
         self._moving: dict[str, tuple[float, np.ndarray, np.ndarray]] = {}  # t, p, velocity
+        self._headings: dict[str, float] = {}  # the latest yaw, rad
         self._paths: dict[str, list[np.ndarray]] = {}
         self._next_path: dict[str, float] = {}
         # what is drawn at most every so often -> the next time it is due, s (simulation)
@@ -290,6 +298,8 @@ class Scene:
         self._boat(name)
         p = np.asarray(list(position), dtype=float)
         self._positions[name] = p
+        x, y, z, w = (float(c) for c in orientation)
+        self._headings[name] = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
         self._track(name, t, p)
         if not self._due(("pose", name), t, self._pose_period):
             return
@@ -319,14 +329,25 @@ class Scene:
         elif t - last[0] >= _VELOCITY_SPAN:
             self._moving[name] = (t, p, (p[:2] - last[1][:2]) / (t - last[0]))
 
-    def _made_waves(self, xy: np.ndarray) -> np.ndarray:
-        """(P,) m, the boats' wakes at world points ``xy`` (P, 2), as the boats move now."""
+    def _made_waves(self, xy: np.ndarray, field: WaveField, t: float) -> np.ndarray:
+        """(P,) m, the waves the boats make at world points ``xy`` (P, 2), as they move now.
+
+        Their wakes, and the waves they radiate and scatter in ``field`` at ``t`` (each
+        boat's own included: the view draws the whole sea).
+        """
+        out = np.zeros(xy.shape[0])
         names = [n for n in self._moving if self._boat(n).ship is not None]
-        if not names:
-            return np.zeros(xy.shape[0])
-        return made_waves_elevation([self._boat(n).ship for n in names],
-                                    np.array([self._positions[n][:2] for n in names]),
-                                    np.array([self._moving[n][2] for n in names]), xy, GRAVITY)
+        if names:
+            out += made_waves_elevation([self._boat(n).ship for n in names],
+                                        np.array([self._positions[n][:2] for n in names]),
+                                        np.array([self._moving[n][2] for n in names]), xy,
+                                        GRAVITY)
+        for n in self._moving:
+            hydro = self._boat(n).hydro
+            if hydro is not None and field.components:
+                out += outgoing_elevation(hydro, field, self._positions[n][:2],
+                                          self._headings.get(n, 0.0), xy, t)
+        return out
 
     def _log_paths(self, whole: bool = True) -> None:
         """Each boat's path: the whole of it, or its tail since the whole was last drawn."""
@@ -383,7 +404,7 @@ class Scene:
         else:
             centre, size = np.zeros(2), self._sea_size
         vertices, triangles, colours = sea_mesh(field, t, centre, size, self._sea_resolution,
-                                                self._made_waves)
+                                                lambda xy: self._made_waves(xy, field, t))
         self._at(t)
         if len(triangles) != self._sea_triangles:  # the grid's shape changed (or the first)
             self._sea_triangles = len(triangles)

@@ -1,5 +1,6 @@
 """What `boatsim view` draws (boat_dynamics.tools.scene), read back from the drawing calls."""
 
+import math
 import sys
 
 import numpy as np
@@ -191,3 +192,25 @@ def test_the_sea_drawn_carries_the_wake_of_a_boat_at_speed(made):
     expected = wake_elevation(shape.ship, 3.0, np.array([15.0, 0.0]), 0.0, vertices[:, :2])
     np.testing.assert_allclose(z, expected, atol=1e-5)  # drawn in float32
     assert np.abs(z[inside]).max() > 0.1  # decimetres behind a 4 m box at Fn 0.48
+
+
+def test_the_sea_drawn_carries_the_waves_a_boat_scatters():
+    """A default box at rest in SEA: the sea drawn is the sea's surface plus the waves the box
+    radiates and scatters (scattered_waves.outgoing_elevation: millimetres to centimetres
+    a few metres off), and only the sea's for a box that makes none."""
+    from boat_dynamics.physics.wave_making.scattered_waves import outgoing_elevation
+
+    drawn = {}
+    for made in ("scattered", "none"):
+        spec = parse_scenario({"boats": [{"hydrodynamics": {"made_waves": made}}]}).boats[0]
+        scene = Drawn({"": hull_shape(spec.params)}, sea_size=30.0, sea_resolution=1.0,
+                      sea_period=1.0)
+        scene.pose(2.0, "", (0.0, 0.0, 0.0), (0.0, 0.0, math.sin(0.3), math.cos(0.3)))
+        scene.sea(2.0, SEA)
+        drawn[made] = _values(scene.at("world/sea")[-1][1].vertex_positions)
+    xy = drawn["none"][:, :2]
+    made = drawn["scattered"][:, 2] - drawn["none"][:, 2]
+    hydro = hull_shape(parse_scenario({"boats": [{}]}).boats[0].params).hydro
+    expected = outgoing_elevation(hydro, SEA, np.zeros(2), 0.6, xy, 2.0)
+    np.testing.assert_allclose(made, expected, atol=1e-5)
+    assert np.abs(made).max() > 0.005
