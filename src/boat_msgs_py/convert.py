@@ -52,7 +52,13 @@ from boat_dynamics.physics.sensors import (
 from boat_msgs_py.cdr import stamp_parts
 from boat_msgs_py.names import MMSI_BASE, WORLD_FRAME
 from ocean_sim.physics.environment import Environment, Wind
-from ocean_sim.physics.waves import MAX_COMPONENTS, InvalidSeaStateError, WaveComponent, WaveField
+from ocean_sim.physics.waves import (
+    MAX_COMPONENTS,
+    InvalidSeaStateError,
+    TileGrid,
+    WaveComponent,
+    WaveField,
+)
 
 __all__ = [
     "UNMEASURED_VARIANCE",
@@ -168,22 +174,28 @@ def wave_field_to_msg(sea: WaveField, stamp: Time) -> WaveFieldMsg:
                              phase=float(c.phase))
             for c in sea.components
         ],
+        tile_size=0.0 if sea.tile is None else float(sea.tile.size),
+        tile_resolution=0 if sea.tile is None else int(sea.tile.resolution),
     )
 
 
 def wave_field_from_msg(msg: WaveFieldMsg) -> WaveField:
     """Core WaveField of a boat_msgs/WaveField (validated: may raise InvalidSeaStateError).
 
-    At most :data:`~ocean_sim.physics.waves.MAX_COMPONENTS` components, counted first.
+    At most :data:`~ocean_sim.physics.waves.MAX_COMPONENTS` components, counted first. A
+    non-zero ``tile_size`` makes it an FFT tile (refused unless its components lie on the
+    tile's lattice).
     """
     if len(msg.components) > MAX_COMPONENTS:
         raise InvalidSeaStateError("components", f"{len(msg.components)} components",
                                    f"at most {MAX_COMPONENTS}")
+    size = getattr(msg, "tile_size", 0.0)  # a bag from before the tile fields: none
     return WaveField(
         tuple(WaveComponent(c.amplitude, c.wavelength, c.direction, c.steepness, c.phase)
               for c in msg.components),
         gravity=msg.gravity,
         depth=msg.depth,
+        tile=TileGrid(size, int(msg.tile_resolution)) if size else None,
     )
 
 

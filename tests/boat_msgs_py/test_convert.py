@@ -115,3 +115,23 @@ def test_a_lockstep_grant_is_the_time_and_the_count():
 
     assert lockstep_grant([2.5, 7.0]) == (2.5, 7)
     assert lockstep_grant([1e18, 3.0]) == (1e18, 3)  # the replayer's last grant
+
+
+def test_an_fft_tiles_message_carries_its_tile_and_an_old_message_none():
+    from types import SimpleNamespace
+
+    from ocean_sim.physics.fft import TileSpec, tile_sea
+
+    sea = tile_sea(TileSpec(size=80.0, resolution=8, seed=1))
+    msg = wave_field_to_msg(sea, seconds_to_time(0.0))
+    assert (msg.tile_size, msg.tile_resolution) == (80.0, 8)
+    assert wave_field_from_msg(msg) == sea and wave_field_from_msg(msg).tile == sea.tile
+    gerstner = wave_field_to_msg(WaveField(sea.components), seconds_to_time(0.0))
+    assert (gerstner.tile_size, gerstner.tile_resolution) == (0.0, 0)
+    assert wave_field_from_msg(gerstner).tile is None
+    # a bag recorded before the tile fields: its messages have none
+    old = SimpleNamespace(gravity=msg.gravity, depth=msg.depth, components=msg.components)
+    assert wave_field_from_msg(old) == WaveField(sea.components)
+    msg.tile_size = 81.0  # components off the lattice it names: refused
+    with pytest.raises(InvalidSeaStateError, match="must lie on the tile's lattice"):
+        wave_field_from_msg(msg)

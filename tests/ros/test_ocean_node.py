@@ -286,3 +286,42 @@ def test_surface_cloud_of_overlapping_boats_is_one_grid_without_duplicates():
     assert {tuple(c) for c in cells} == expected
     np.testing.assert_allclose(pts[:, 2], sample_surface(sea, pts[:, :2].astype(float),
                                                          2.0).heights, atol=1e-4)
+    # a Gerstner sea's cloud is the inverted query at the grid's points, bit for bit as before
+    # the FFT tile's grid (the float32 of sample_surface's answer there)
+    xy = cells.astype(float)
+    s = sample_surface(sea, xy, 2.0)
+    np.testing.assert_array_equal(
+        pts, np.column_stack([xy, s.heights, s.normals]).astype(np.float32))
+
+
+def test_surface_cloud_of_an_fft_sea_is_its_grid_particles_exact_at_the_nodes():
+    import rclpy
+
+    from ocean_sim.physics.fft import TileSpec, tile_sea
+    from ocean_sim.physics.waves import displace
+    from ocean_sim.ros.node import OceanNode
+
+    # rest points on the tile's 1 m grid (L = 150 m, M = 150) around boats 180 m apart: the
+    # periodic tile over more than one period
+    centers = np.array([[0.0, 0.0], [180.3, -20.2]])
+    sea = tile_sea(TileSpec(size=150.0, resolution=16, seed=2, spectrum="jonswap",
+                            significant_height=1.5, peak_period=7.0, choppiness=0.9))
+    rclpy.init()
+    try:
+        node = OceanNode(sea, now=lambda: 0.0, surface_centers=lambda: centers)
+        try:
+            cloud = node.surface_cloud(31.5)
+        finally:
+            node.destroy_node()
+    finally:
+        rclpy.try_shutdown()
+    pts = np.frombuffer(bytes(cloud.data), dtype=np.float32).reshape(-1, 6).astype(float)
+    rest = np.array(sorted({(x, y) for c in np.round(centers).astype(int)
+                            for x in range(c[0] - 20, c[0] + 21)
+                            for y in range(c[1] - 20, c[1] + 21)}), dtype=float)
+    assert cloud.width == len(rest)
+    np.testing.assert_allclose(pts[:, :3], displace(sea, rest, 31.5), rtol=0, atol=2e-5)
+    assert np.abs(pts[:, :2] - rest).max() > 0.05  # x, y displaced (Q a ~ 0.1 m)
+    s = sample_surface(sea, pts[:, :2], 31.5)  # the inverted query agrees at those points
+    assert np.abs(s.heights - pts[:, 2]).max() < 1e-3
+    np.testing.assert_allclose(pts[:, 3:], s.normals, rtol=0, atol=1e-4)

@@ -85,7 +85,8 @@ EXERCISES: dict[str, dict] = {
     },
     "an fft ocean, phillips": {
         "ocean": {"model": "fft", "fft": {"resolution": 8, "seed": 1, "wind_speed": 6.0,
-                                          "phillips_constant": 0.002}},
+                                          "phillips_constant": 0.002,
+                                          "suppression_length": 1.0}},
         "boats": [_boat()],
     },
     "an fft ocean, jonswap": {

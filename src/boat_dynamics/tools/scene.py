@@ -10,7 +10,9 @@ the ``sim_time`` timeline, seconds of simulation time, so a bag and a live run s
 
 The sea is a mesh of the Gerstner surface (:func:`ocean_sim.physics.waves.sample_surface`,
 heights with the horizontal displacement inverted) on a grid that follows the fleet, its
-vertices on world-fixed points, coloured from trough to crest.
+vertices on world-fixed points, coloured from trough to crest. An FFT tile's sea
+(``ocean.model: fft``) is drawn from the tile's FFT grid instead: its vertices are the surface
+particles of world-fixed rest points (:func:`ocean_sim.physics.fft.grid_surface`).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from boat_dynamics.physics.wave_making.interaction import made_waves_elevation
 from boat_dynamics.physics.wave_making.kelvin_wake import ThinShip, thin_ship
 from boat_dynamics.physics.wave_making.scattered_waves import outgoing_elevation
 from ocean_sim.physics.constants import GRAVITY
+from ocean_sim.physics.fft import grid_points, grid_surface
 from ocean_sim.physics.waves import WaveField, sample_surface
 
 __all__ = ["DEFAULT_SOURCES", "POSE_PERIOD", "HullShape", "Scene", "hull_shape", "sea_mesh"]
@@ -132,7 +135,9 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
 
     The grid's points are world-fixed multiples of ``resolution`` (the mesh does not swim
     with the fleet), at most :data:`MAX_SEA_VERTICES` of them (coarser when ``size`` asks for
-    more).
+    more). A sea that is an FFT tile (``sea.tile``) is drawn from its FFT grid
+    (:func:`_tile_mesh`) unless that grid would be finer than
+    :data:`ocean_sim.physics.fft.MAX_GRID_POINTS` a side.
 
     Args:
         sea: the sea state.
@@ -147,6 +152,9 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
     Returns:
         vertices (V, 3) m world, triangles (T, 3) indices, colours (V, 3) uint8.
     """
+    points = None if sea.tile is None else grid_points(sea.tile, resolution)
+    if points is not None:
+        return _tile_mesh(sea, t, centre, size, points, made)
     n = math.ceil(size / resolution) + 1
     if n * n > MAX_SEA_VERTICES:
         n = int(math.sqrt(MAX_SEA_VERTICES))
@@ -158,13 +166,52 @@ def sea_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, resoluti
     heights = sample_surface(sea, xy, t).heights
     if made is not None:
         heights = heights + made(xy)
+    reach = max(sum(c.amplitude for c in sea.components), 1e-9)
+    triangles, colours = _mesh_faces(n, heights, reach)
+    return np.column_stack([xy, heights]), triangles, colours
+
+
+def _tile_mesh(sea: WaveField, t: float, centre: np.ndarray, size: float, points: int,
+               made: Callable[[np.ndarray], np.ndarray] | None
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`sea_mesh` of an FFT tile: the surface particles of its grid's rest points.
+
+    The rest points are nodes of the tile's M x M grid (M = ``points``, spacing L / M at most
+    the resolution asked; every ``stride``-th node when more than :data:`MAX_SEA_VERTICES`
+    would be drawn), tiled periodically over the square; each vertex is the displaced
+    particle, exactly the direct sum of the components there (no interpolation), raised by
+    the ``made`` waves where it is.
+    """
+    spacing = sea.tile.size / points
+    n, stride = math.ceil(size / spacing) + 1, 1
+    side = int(math.sqrt(MAX_SEA_VERTICES))
+    if n > side:
+        stride = math.ceil((n - 1) / (side - 1))
+        n = math.ceil((n - 1) / stride) + 1
+    first = np.round((np.asarray(centre, dtype=float) - size / 2) / (stride * spacing))
+    ticks = (first.astype(np.int64) * stride)[:, None] + stride * np.arange(n)
+    gx, gy = np.meshgrid(ticks[0], ticks[1], indexing="ij")
+    vertices, _ = grid_surface(sea, t, np.column_stack([gx.ravel(), gy.ravel()]), points,
+                               normals=False)
+    if made is not None:
+        vertices[:, 2] += made(vertices[:, :2])
+    # the crest colour at 2 standard deviations of the height (H_s / 2): the sum of the
+    # amplitudes of thousands of waves of random phases is never reached
+    reach = max(2.0 * math.sqrt(0.5 * sum(c.amplitude**2 for c in sea.components)), 1e-9)
+    triangles, colours = _mesh_faces(n, vertices[:, 2], reach)
+    return vertices, triangles, colours
+
+
+def _mesh_faces(n: int, heights: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:
+    """Triangles (T, 3) of an n x n grid's vertices, and their colours (V, 3) uint8.
+
+    Vertices row-major, x first; colours from trough (-reach, m) to crest (+reach).
+    """
     idx = np.arange(n * n).reshape(n, n)
     a, b, c, d = idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(), idx[:-1, 1:]
     triangles = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d.ravel()], 1)])
-    reach = max(sum(c.amplitude for c in sea.components), 1e-9)
     share = np.clip(0.5 + 0.5 * heights / reach, 0.0, 1.0)[:, None]
-    colours = (_TROUGH + share * (_CREST - _TROUGH)).astype(np.uint8)
-    return np.column_stack([xy, heights]), triangles, colours
+    return triangles, (_TROUGH + share * (_CREST - _TROUGH)).astype(np.uint8)
 
 
 class Scene:

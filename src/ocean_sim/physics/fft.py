@@ -65,13 +65,16 @@ from ocean_sim.physics.spectra import jonswap
 from ocean_sim.physics.waves import (
     MAX_COMPONENTS,
     InvalidSeaStateError,
+    TileGrid,
     WaveComponent,
     WaveField,
     angular_frequency,
+    time_phase,
 )
 
 __all__ = [
     "FFT_SPECTRA",
+    "MAX_GRID_POINTS",
     "MAX_RESOLUTION",
     "OCEAN_MODELS",
     "PIERSON_MOSKOWITZ_PHILLIPS",
@@ -80,6 +83,8 @@ __all__ = [
     "Tile",
     "TileSpec",
     "build_tile",
+    "grid_points",
+    "grid_surface",
     "lattice",
     "spectral_density",
     "tile_amplitudes",
@@ -122,6 +127,9 @@ class TileSpec:
         direction: the wind's / mean waves' direction toward, rad, counter-clockwise from +x.
         choppiness: 0..1, the budget Q sum_k k a_k of the steepness Q = -lambda that every
             component gets (:func:`tile_steepness`); 1 = crests at the verge of looping.
+        suppression_length: l, m, 0..size: Tessendorf's small-wave suppression (eq. 24), the
+            spectrum times exp(-k^2 l^2): waves shorter than l keep less than exp(-4 pi^2)
+            = 7e-18 of their variance, waves of 10 l keep 67 %; 0 = none.
         gravity: g, m/s^2.
         depth: h, m (inf = deep water).
     """
@@ -138,6 +146,7 @@ class TileSpec:
     spreading: float = 10.0
     direction: float = 0.0
     choppiness: float = 0.5
+    suppression_length: float = 0.0
     gravity: float = GRAVITY
     depth: float = math.inf
 
@@ -166,6 +175,11 @@ def _check(spec: TileSpec) -> None:
             raise InvalidSeaStateError(f"fft.{name}", v, f"must be a number in [{lo:g}, {hi:g}]")
     if math.isnan(spec.depth) or spec.depth <= 0.0:
         raise InvalidSeaStateError("fft.depth", spec.depth, "must be > 0 (m), or inf")
+    length = spec.suppression_length
+    if isinstance(length, bool) or not isinstance(length, (int, float)) or not (
+            0.0 <= length <= spec.size):
+        raise InvalidSeaStateError("fft.suppression_length", length,
+                                   f"must be a number in [0, {spec.size:g}] m (the tile's size)")
 
 
 def lattice(spec: TileSpec) -> tuple[np.ndarray, np.ndarray]:
@@ -227,10 +241,14 @@ def tile_amplitudes(spec: TileSpec) -> np.ndarray:
     """h0(k), (N, N) complex m, in FFT order (eq. 42); 0 at k = 0 and on the Nyquist lines.
 
     Deterministic: ``numpy.random.default_rng(seed)`` draws xi_r then xi_i, N x N each.
+    With a ``suppression_length`` l, P(k) is times exp(-k^2 l^2) (eq. 24), so h0 is times
+    exp(-k^2 l^2 / 2) (the same draws).
     """
     n = spec.resolution
     kx, ky = lattice(spec)
     variance = spectral_density(spec, kx, ky) * (TWO_PI / spec.size) ** 2 / 2.0
+    if spec.suppression_length > 0.0:
+        variance *= np.exp(-(kx * kx + ky * ky) * spec.suppression_length**2)
     rng = np.random.default_rng(spec.seed)
     xi = rng.standard_normal((2, n, n))
     h0 = (xi[0] + 1j * xi[1]) * np.sqrt(variance / 2.0)
@@ -256,7 +274,9 @@ def tile_sea(spec: TileSpec, h0: np.ndarray | None = None) -> WaveField:
 
     Component k: amplitude 2 |h0(k)|, wavelength 2 pi / |k|, direction atan2(ky, kx),
     steepness :func:`tile_steepness`, phase arg h0(k); in FFT order (x index, then y); waves of
-    zero amplitude (k = 0, the Nyquist lines, across a Phillips wind) are left out.
+    zero amplitude (k = 0, the Nyquist lines, across a Phillips wind) are left out. The sea's
+    ``tile`` is the spec's size and resolution (so the view and /ocean/surface draw it by
+    :func:`grid_surface`).
 
     Args:
         spec: the tile.
@@ -271,7 +291,8 @@ def tile_sea(spec: TileSpec, h0: np.ndarray | None = None) -> WaveField:
     comps = tuple(WaveComponent(float(a[i]), float(TWO_PI / k[i]), float(heading[i]), q,
                                 float(phase[i]))
                   for i in range(a.size))
-    return WaveField(comps, gravity=spec.gravity, depth=spec.depth)
+    return WaveField(comps, gravity=spec.gravity, depth=spec.depth,
+                     tile=TileGrid(float(spec.size), spec.resolution))
 
 
 @dataclass(frozen=True)
@@ -336,3 +357,88 @@ def build_tile(spec: TileSpec, t: float, h0: np.ndarray | None = None) -> Tile:
                     (1.0 - a) * (1.0 - cc) - b * b], axis=-1)
     normals = nrm / np.linalg.norm(nrm, axis=-1, keepdims=True)
     return Tile(positions, normals, (1.0 - a) * (1.0 - cc) - b * b, float(t))
+
+
+#: The largest M of an M x M grid :func:`grid_surface` sums by FFT (512: 262,144 rest points,
+#: about 40 MB of work arrays); a finer one is left to the direct sum (:func:`grid_points`).
+MAX_GRID_POINTS = 512
+
+
+def grid_points(tile: TileGrid, spacing: float) -> int | None:
+    """M, the points per side of the tile's FFT grid at most ``spacing`` (m) apart.
+
+    M = ceil(L / spacing) (the grid spacing L / M is ``spacing`` when L is a multiple of it,
+    else a little finer), or None when M would exceed :data:`MAX_GRID_POINTS`.
+    """
+    m = max(1, math.ceil(tile.size / spacing - 1e-9))
+    return m if m <= MAX_GRID_POINTS else None
+
+
+def _grid_fields(sea: WaveField, t: float, m: int, cells: np.ndarray, count: int
+                 ) -> np.ndarray:
+    """(count, K) the first ``count`` (4 or 8) real fields below at the cells.
+
+    By count / 2 inverse FFTs.
+
+    Each field is Re sum_i c_i e^{i k_i . x0} with c_i = a_i e^{i(phi_i - omega_i t)} times a
+    factor per field (theta_i's derivatives; -sin theta = Re(i e^{i theta})):
+    z: 1; D_x, D_y: i Q d_x, i Q d_y; dz/dx0, dz/dy0: i k_x, i k_y; dD_x/dx0, dD_x/dy0
+    (= dD_y/dx0), dD_y/dy0: -Q d_x k_x, -Q d_x k_y, -Q d_y k_y. Two fields A, B per
+    transform: the Hermitian parts of their spectra (Re of the sum) as A + iB.
+    """
+    ar = sea.arrays
+    idx = np.round(ar.kd * (sea.tile.size / TWO_PI)).astype(np.int64) % m  # (2, C) cells
+    c = ar.a * np.exp(1j * time_phase(sea, t))
+    kx, ky = ar.kd
+    qx, qy = ar.q * ar.dx, ar.q * ar.dy
+    factors = (np.ones_like(kx), 1j * qx, 1j * qy, 1j * kx, 1j * ky, -qx * kx, -qx * ky,
+               -qy * ky)
+    neg, i, j = (-np.arange(m)) % m, cells[:, 0] % m, cells[:, 1] % m
+    out = np.empty((count, cells.shape[0]))
+    for p in range(count // 2):
+        raw = np.zeros((2, m, m), dtype=complex)
+        for f in range(2):  # add.at: waves that alias onto one cell (M < N) add up
+            np.add.at(raw[f], (idx[0], idx[1]), factors[2 * p + f] * c)
+        herm = 0.5 * (raw + np.conj(raw[:, neg][:, :, neg]))
+        field = np.fft.ifft2(herm[0] + 1j * herm[1])[i, j] * (m * m)
+        out[2 * p], out[2 * p + 1] = field.real, field.imag
+    return out
+
+
+def grid_surface(sea: WaveField, t: float, cells: np.ndarray, m: int, normals: bool = True
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
+    """The surface particles of rest positions on the tile's M x M grid, tiled over any area.
+
+    Rest position of cell (i, j): (i, j) L / M for any integers (the tile repeats every L),
+    so the answer is exact at those nodes: the direct sum of the sea's components there, by
+    four inverse FFTs over the tile (eq. 19, 29-31; like :func:`build_tile`, but from the
+    components, any amplitude, phase and steepness each; two without the normals), then
+    indexed modulo M. No interpolation: a point between nodes is not asked for. Costs in
+    docs/DESIGN.md ("The FFT ocean").
+
+    Args:
+        sea: a sea with a ``tile`` (:func:`tile_sea`).
+        t: time, s.
+        cells: (K, 2) integers, the rest positions' grid cells.
+        m: M, the grid's points per side (:func:`grid_points`).
+        normals: also the normals (two more inverse FFTs).
+
+    Returns:
+        positions (K, 3) m, the displaced points (x0 - Q D, z = h); normals (K, 3), unit,
+        upward, dP/dx0 x dP/dy0 (None unless ``normals``).
+    """
+    cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    rest = cells * (sea.tile.size / m)
+    if not sea.components:
+        up = np.zeros((cells.shape[0], 3))
+        up[:, 2] = 1.0
+        return np.column_stack([rest, np.zeros(cells.shape[0])]), up if normals else None
+    fields = _grid_fields(sea, t, m, cells, 8 if normals else 4)
+    positions = np.column_stack([rest + fields[1:3].T, fields[0]])
+    if not normals:
+        return positions, None
+    zx, zy, axx, axy, ayy = fields[3:]
+    # tangents dP/dx0 = (1 + axx, axy, zx), dP/dy0 = (axy, 1 + ayy, zy)
+    nrm = np.column_stack([axy * zy - zx * (1.0 + ayy), axy * zx - (1.0 + axx) * zy,
+                           (1.0 + axx) * (1.0 + ayy) - axy * axy])
+    return positions, nrm / np.linalg.norm(nrm, axis=1, keepdims=True)

@@ -39,6 +39,7 @@ __all__ = [
     "InvalidSeaStateError",
     "Precision",
     "SurfaceSample",
+    "TileGrid",
     "WaveComponent",
     "WaveField",
     "angular_frequency",
@@ -136,6 +137,29 @@ def angular_frequency(wavenumber: np.ndarray | float, gravity: float, depth: flo
 
 
 @dataclass(frozen=True)
+class TileGrid:
+    """The periodic lattice an FFT tile's components lie on (ocean_sim/physics/fft.py).
+
+    Every component's wavevector is k = 2 pi (n, m) / size with integers |n|, |m| <
+    resolution / 2, so the sea repeats every ``size`` in x and y and its surface on any grid
+    of rest positions spaced size / M can be summed by inverse FFTs (:func:`fft.grid_surface`).
+
+    Attributes:
+        size: L, m, the tile's side, > 0.
+        resolution: N, even, >= 4: the tile's N x N grid (its waves are (N - 1)^2 at most).
+    """
+
+    size: float
+    resolution: int
+
+
+#: How far from an integer n = k_x L / (2 pi) may be for a component to lie on a tile's
+#: lattice (the wavelength and direction of a lattice wave, round-tripped through floats, are
+#: off by ~1e-14).
+_LATTICE_TOLERANCE = 1e-6
+
+
+@dataclass(frozen=True)
 class _Arrays:
     """Per-component arrays, shape (M,), derived once from a :class:`WaveField`."""
 
@@ -155,18 +179,21 @@ class WaveField:
     """A sea state: Gerstner components over water of depth ``depth``.
 
     Construction validates: refuses non-finite values, non-positive wavelength, negative
-    amplitude, steepness outside [0, 1], non-positive gravity or depth, and seas whose crests
-    would loop (sum_i Q_i k_i a_i > 1).
+    amplitude, steepness outside [0, 1], non-positive gravity or depth, seas whose crests
+    would loop (sum_i Q_i k_i a_i > 1), and a ``tile`` whose lattice a component is not on.
 
     Attributes:
         components: the wave components.
         gravity: g, m/s^2, > 0.
         depth: h, m, > 0; ``inf`` = deep water.
+        tile: the FFT tile the components are (``ocean.model: fft``), or None: a Gerstner sum
+            (its surface is then never computed on a grid; the queries ignore it).
     """
 
     components: tuple[WaveComponent, ...] = ()
     gravity: float = GRAVITY
     depth: float = math.inf
+    tile: TileGrid | None = None
     # what filtered() and weights() computed: derived from the frozen fields, written by
     # those two methods only (once per sea and key; never stale)
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
@@ -195,7 +222,7 @@ class WaveField:
         key = ("filtered", float(min_wavelength))
         if key not in self._derived:
             kept = tuple(c for c in self.components if c.wavelength >= min_wavelength)
-            self._derived[key] = WaveField(kept, self.gravity, self.depth)
+            self._derived[key] = WaveField(kept, self.gravity, self.depth, self.tile)
         return self._derived[key]
 
     def weights(self, precision: Precision) -> _Weights:
@@ -255,6 +282,27 @@ def _validate(wf: WaveField) -> None:
             "crests loop when sum_i steepness_i * (2 pi / wavelength_i) * amplitude_i > 1; "
             "lower the steepness or the amplitude",
         )
+    if wf.tile is not None:
+        _validate_tile(wf)
+
+
+def _validate_tile(wf: WaveField) -> None:
+    """Refuse a tile of bad size or resolution, or whose lattice a component is not on."""
+    size, n = wf.tile.size, wf.tile.resolution
+    if isinstance(size, bool) or not isinstance(size, (int, float)) or not (
+            math.isfinite(size) and size > 0.0):
+        raise InvalidSeaStateError("tile.size", size, "must be a finite number > 0 (m)")
+    if isinstance(n, bool) or not isinstance(n, int) or n < 4 or n % 2:
+        raise InvalidSeaStateError("tile.resolution", n, "must be an even integer >= 4")
+    index = wf.arrays.kd * (size / TWO_PI)  # (2, M) lattice indices n, m
+    off = np.abs(index - np.round(index))
+    outside = (off > _LATTICE_TOLERANCE) | (np.abs(np.round(index)) >= n // 2)
+    if outside.any():
+        i = int(np.flatnonzero(outside.any(axis=0))[0])
+        raise InvalidSeaStateError(
+            f"components[{i}]", wf.components[i],
+            f"must lie on the tile's lattice: wavevector 2 pi (n, m) / {size:g} m with "
+            f"integers |n|, |m| < {n // 2}")
 
 
 def time_phase(wf: WaveField, t: float) -> np.ndarray:

@@ -36,6 +36,7 @@ from boat_msgs_py.names import SAMPLE_SURFACE, SURFACE_CLOUD, WAVE_FIELD, WORLD_
 from boat_msgs_py.qos import SURFACE_QOS, WAVE_FIELD_QOS
 from boat_msgs_py.tap import Tap, TappedPublisher
 from ocean_sim.physics.environment import Environment
+from ocean_sim.physics.fft import grid_points, grid_surface
 from ocean_sim.physics.waves import (
     DEFAULT_PRECISION,
     PRECISIONS,
@@ -74,6 +75,23 @@ _CLOUD_FIELDS = [
     PointField(name=n, offset=4 * i, datatype=PointField.FLOAT32, count=1)
     for i, n in enumerate(("x", "y", "z", "normal_x", "normal_y", "normal_z"))
 ]
+
+
+def _cloud_cells(centers: np.ndarray, size: float, spacing: float) -> np.ndarray:
+    """(K, 2) integer cells of one world-aligned grid of ``spacing`` (m) around the centres.
+
+    A square of side ``size`` (m) around each centre (C, 2); each cell once where the squares
+    overlap (the grid does not swim with the boats).
+    """
+    ticks = np.arange(-size / 2, size / 2 + 1e-9, spacing)
+    gx, gy = np.meshgrid(ticks, ticks, indexing="ij")
+    grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    cells = np.round((centers[:, None, :] + grid[None]) / spacing).reshape(-1, 2)
+    cells = cells.astype(np.int64)
+    low = cells.min(axis=0)
+    span = int(cells[:, 1].max() - low[1]) + 1
+    keys = np.unique((cells[:, 0] - low[0]) * span + (cells[:, 1] - low[1]))  # 1-D: fast
+    return np.column_stack([keys // span + low[0], keys % span + low[1]])
 
 
 def answer_sample(request: SampleSurface.Request, response: SampleSurface.Response,
@@ -276,10 +294,12 @@ class OceanNode(Node):
                        "together with set_parameters_atomically")
         n = next(iter(lengths.values()))
         try:
-            sea = WaveField(
-                tuple(WaveComponent(**{COMPONENT_FIELDS[k][0]: float(arrays[k][i])
-                                       for k in COMPONENT_FIELDS}) for i in range(n)),
-                gravity=float(value["gravity"]), depth=float(value["depth"]))
+            comps = tuple(WaveComponent(**{COMPONENT_FIELDS[k][0]: float(arrays[k][i])
+                                           for k in COMPONENT_FIELDS}) for i in range(n))
+            # an FFT tile stays one while its components do (gravity and depth change only
+            # the frequencies); other components are a Gerstner sum
+            sea = WaveField(comps, gravity=float(value["gravity"]), depth=float(value["depth"]),
+                            tile=self._sea.tile if comps == self._sea.components else None)
         except (InvalidSeaStateError, TypeError, ValueError) as exc:
             return SetParametersResult(successful=False, reason=f"sea state refused: {exc}")
         if sea != self._sea:
@@ -331,23 +351,27 @@ class OceanNode(Node):
             self._cloud_pub.publish(self.surface_cloud(t))
 
     def surface_cloud(self, t: float) -> PointCloud2:
-        """PointCloud2 (x, y, z, normal_x, normal_y, normal_z; float32) of the surface at t."""
+        """PointCloud2 (x, y, z, normal_x, normal_y, normal_z; float32) of the surface at t.
+
+        A Gerstner sum: the inverted query at the world-fixed grid's points. An FFT tile
+        (``sea.tile``): the surface particles of the world-fixed rest points of the tile's FFT
+        grid (spacing L / M <= ``surface.resolution``; fft.grid_surface), exact there, their
+        x, y displaced; the direct sum as for Gerstner when that grid would be too fine.
+        """
         size = self.get_parameter("surface.size").value
         res = self.get_parameter("surface.resolution").value
         centers = (np.zeros((1, 2)) if self._centers is None
                    else np.asarray(self._centers(), dtype=float).reshape(-1, 2))
-        ticks = np.arange(-size / 2, size / 2 + 1e-9, res)
-        gx, gy = np.meshgrid(ticks, ticks, indexing="ij")
-        grid = np.stack([gx.ravel(), gy.ravel()], axis=1)
-        # one world-aligned grid (it does not swim with the boats), each point once where the
-        # boats' squares overlap
-        cells = np.round((centers[:, None, :] + grid[None]) / res).reshape(-1, 2).astype(np.int64)
-        low = cells.min(axis=0)
-        span = int(cells[:, 1].max() - low[1]) + 1
-        keys = np.unique((cells[:, 0] - low[0]) * span + (cells[:, 1] - low[1]))  # 1-D: fast
-        xy = np.column_stack([keys // span + low[0], keys % span + low[1]]) * res
-        surface = sample(self._sea, xy, t)
-        points = np.column_stack([xy, surface.heights, surface.normals]).astype(np.float32)
+        m = None if self._sea.tile is None else grid_points(self._sea.tile, res)
+        if m is None:
+            xy = _cloud_cells(centers, size, res) * res
+            surface = sample(self._sea, xy, t)
+            points = np.column_stack([xy, surface.heights, surface.normals])
+        else:
+            spacing = self._sea.tile.size / m
+            points = np.column_stack(grid_surface(self._sea, t,
+                                                  _cloud_cells(centers, size, spacing), m))
+        points = points.astype(np.float32)
         return PointCloud2(
             header=Header(stamp=seconds_to_time(t, self._epoch), frame_id=WORLD_FRAME),
             height=1, width=points.shape[0],

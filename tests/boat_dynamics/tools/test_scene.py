@@ -8,7 +8,8 @@ import pytest
 
 from boat_dynamics.physics.scenario import default_scenario_path, load_scenario, parse_scenario
 from boat_dynamics.tools.scene import MAX_SEA_VERTICES, Scene, hull_shape, sea_mesh
-from ocean_sim.physics.waves import WaveComponent, WaveField, sample_surface
+from ocean_sim.physics.fft import TileSpec, tile_sea
+from ocean_sim.physics.waves import WaveComponent, WaveField, displace, sample_surface
 
 #: rerun-sdk (the view extra; make test installs it) needs Python 3.11.
 pytestmark = pytest.mark.skipif(sys.version_info < (3, 11), reason="rerun-sdk needs 3.11+")
@@ -52,6 +53,50 @@ def test_a_wide_sea_keeps_to_the_vertex_budget_and_its_size():
     assert len(vertices) <= MAX_SEA_VERTICES
     span = vertices[:, :2].max(axis=0) - vertices[:, :2].min(axis=0)
     np.testing.assert_allclose(span, 2000.0, rtol=1e-9)
+
+
+TILE = tile_sea(TileSpec(size=60.0, resolution=16, seed=3, spectrum="jonswap",
+                         significant_height=1.0, peak_period=5.0, choppiness=0.9))
+
+
+def test_an_fft_sea_is_drawn_from_its_grid_exact_at_the_nodes_tiled_over_any_area():
+    # 1 m grid (L = 60 m, M = 60) over 2.5 tiles far from the origin
+    t, centre = 7.3, np.array([1000.3, -523.6])
+    vertices, triangles, colours = sea_mesh(TILE, t, centre, 150.0, 1.0)
+    assert vertices.shape == (151 * 151, 3) and triangles.shape == (2 * 150 * 150, 3)
+    rest = np.round(centre - 75.0) + np.stack(np.meshgrid(np.arange(151.0), np.arange(151.0),
+                                                          indexing="ij"), -1).reshape(-1, 2)
+    np.testing.assert_allclose(vertices, displace(TILE, rest, t), rtol=0, atol=1e-9)
+    assert np.abs(vertices[:, :2] - rest).max() > 0.05  # the particles, displaced
+    some = vertices[::37]  # the inverted query agrees at the vertices (as it does anywhere)
+    assert np.abs(sample_surface(TILE, some[:, :2], t).heights - some[:, 2]).max() < 1e-3
+    assert len(np.unique(colours, axis=0)) > 50  # shaded
+    moved, _, _ = sea_mesh(TILE, t, centre + [0.1, -0.1], 150.0, 1.0)
+    np.testing.assert_array_equal(moved, vertices)  # it does not swim
+
+
+def test_a_wide_fft_sea_keeps_to_the_vertex_budget_and_its_size():
+    vertices, _, _ = sea_mesh(TILE, 0.0, np.zeros(2), 2000.0, 1.0)
+    assert len(vertices) <= MAX_SEA_VERTICES
+    span = vertices[:, :2].max(axis=0) - vertices[:, :2].min(axis=0)
+    np.testing.assert_allclose(span, 2000.0, atol=12.0)  # within 11 m strides, displaced
+
+
+def test_a_gerstner_sea_is_drawn_as_before_bit_for_bit():
+    # the tile's own components without its tile: a Gerstner sum, drawn by the query
+    for sea in (SEA, WaveField(TILE.components)):
+        vertices, triangles, colours = sea_mesh(sea, 3.2, np.array([10.3, -4.6]), 20.0, 0.5)
+        ticks = np.round((np.array([10.3, -4.6]) - 10.0) / 0.5) * 0.5
+        gx, gy = np.meshgrid(ticks[0] + 0.5 * np.arange(41), ticks[1] + 0.5 * np.arange(41),
+                             indexing="ij")
+        xy = np.column_stack([gx.ravel(), gy.ravel()])
+        heights = sample_surface(sea, xy, 3.2).heights
+        np.testing.assert_array_equal(vertices, np.column_stack([xy, heights]))
+        reach = max(sum(c.amplitude for c in sea.components), 1e-9)
+        share = np.clip(0.5 + 0.5 * heights / reach, 0.0, 1.0)[:, None]
+        np.testing.assert_array_equal(
+            colours, (np.array([12, 44, 92]) + share * np.array([84, 124, 130])).astype(np.uint8))
+        assert triangles.shape == (2 * 40 * 40, 3)
 
 
 def test_a_hull_is_its_buoyancy_mesh_and_an_arrow_a_hull_length_at_full_thrust():

@@ -8,16 +8,27 @@ import numpy as np
 import pytest
 
 from ocean_sim.physics.fft import (
+    MAX_GRID_POINTS,
     PIERSON_MOSKOWITZ_PHILLIPS,
     TileSpec,
     build_tile,
+    grid_points,
+    grid_surface,
+    lattice,
     spectral_density,
     tile_amplitudes,
     tile_sea,
     tile_steepness,
 )
 from ocean_sim.physics.spectra import pierson_moskowitz_peak_period
-from ocean_sim.physics.waves import InvalidSeaStateError, displace, sample_surface
+from ocean_sim.physics.waves import (
+    InvalidSeaStateError,
+    TileGrid,
+    WaveComponent,
+    WaveField,
+    displace,
+    sample_surface,
+)
 
 _PHILLIPS = TileSpec(size=120.0, resolution=32, seed=4, wind_speed=7.0, direction=0.4,
                      choppiness=1.0)
@@ -147,7 +158,88 @@ def test_the_tiles_variance_is_the_spectrums_on_average():
 @pytest.mark.parametrize(("name", "value"), [
     ("resolution", 7), ("resolution", 2), ("resolution", 66), ("resolution", 32.0),
     ("spectrum", "pm"), ("seed", -1), ("size", 0.0), ("choppiness", 1.5),
-    ("wind_speed", math.nan), ("spreading", -1.0), ("depth", 0.0)])
+    ("wind_speed", math.nan), ("spreading", -1.0), ("depth", 0.0),
+    ("suppression_length", -0.5), ("suppression_length", 201.0),
+    ("suppression_length", math.nan)])
 def test_a_bad_tile_is_refused_naming_the_key(name, value):
     with pytest.raises(InvalidSeaStateError, match=f"fft.{name} = "):
         TileSpec(**{name: value})
+
+
+@pytest.mark.parametrize("m", [32, 75, 5], ids=["the tile's grid", "finer", "coarser"])
+def test_the_grid_surface_is_the_direct_sum_at_its_nodes_tiled_over_any_area(m):
+    # JONSWAP, depth 12 m, choppiness 0.9: every field (height, displacement, slopes) counts;
+    # at M < N the waves alias onto the nodes, and the nodes are still exact
+    sea, t, size = tile_sea(_PHILLIPS), 321.0, _PHILLIPS.size
+    cells = np.stack(np.meshgrid(np.arange(-70, 90, 3), np.arange(-3 * m, 4 * m, 7),
+                                 indexing="ij"), -1).reshape(-1, 2)
+    positions, normals = grid_surface(sea, t, cells, m)
+    rest = cells * (size / m)
+    np.testing.assert_allclose(positions, displace(sea, rest, t), rtol=0, atol=1e-9)
+    s = sample_surface(sea, positions[:, :2], t)  # the query finds the nodes again
+    np.testing.assert_allclose(s.rest_xy, rest, rtol=0, atol=1e-6)
+    assert np.abs(s.heights - positions[:, 2]).max() < 1e-3
+    np.testing.assert_allclose(s.normals, normals, rtol=0, atol=1e-6)
+    shifted, _ = grid_surface(sea, t, cells + [m, -2 * m], m, normals=False)  # periodic
+    np.testing.assert_allclose(shifted, positions + [size, -2 * size, 0.0], rtol=0, atol=1e-9)
+
+
+def test_the_grid_surface_of_a_tile_is_its_build_tile():
+    spec, t = _JONSWAP, 55.0
+    cells = np.stack(np.meshgrid(np.arange(16), np.arange(16), indexing="ij"), -1)
+    positions, normals = grid_surface(tile_sea(spec), t, cells.reshape(-1, 2), 16)
+    tile = build_tile(spec, t)
+    np.testing.assert_allclose(positions, tile.positions.reshape(-1, 3), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(normals, tile.normals.reshape(-1, 3), rtol=0, atol=1e-12)
+
+
+def test_the_grid_is_as_fine_as_asked_within_its_budget():
+    assert grid_points(TileGrid(200.0, 32), 1.0) == 200  # spacing 1 m
+    assert grid_points(TileGrid(150.7, 32), 1.0) == 151  # 0.998 m
+    assert grid_points(TileGrid(200.0, 32), 200.0 / MAX_GRID_POINTS) == MAX_GRID_POINTS
+    assert grid_points(TileGrid(200.0, 32), 0.99 * 200.0 / MAX_GRID_POINTS) is None
+
+
+def test_a_tile_sea_carries_its_tile_and_its_lattice_is_checked():
+    sea = tile_sea(_JONSWAP)
+    assert sea.tile == TileGrid(150.0, 16)
+    assert sea.filtered(20.0).tile == sea.tile and sea != WaveField(sea.components, sea.gravity,
+                                                                    sea.depth)
+    assert len(sea.components) == 15 * 15 - 1  # every lattice wave but k = 0 and Nyquist's
+    off = WaveComponent(0.1, 150.0 / 2.5, 0.0)  # n = 2.5: between lattice points
+    with pytest.raises(InvalidSeaStateError, match=r"components\[224\] = .*must lie on the "
+                       r"tile's lattice: wavevector 2 pi \(n, m\) / 150 m with integers "
+                       r"\|n\|, \|m\| < 8"):
+        WaveField((*sea.components, off), tile=sea.tile)
+    beyond = WaveComponent(0.01, 150.0 / 8, 0.0)  # n = 8: the Nyquist line, not a wave of N 16
+    with pytest.raises(InvalidSeaStateError, match=r"components\[0\]"):
+        WaveField((beyond,), tile=TileGrid(150.0, 16))
+    assert WaveField((beyond,), tile=TileGrid(150.0, 18)).tile.resolution == 18
+    for bad, key in ((TileGrid(0.0, 16), "tile.size"), (TileGrid(math.inf, 16), "tile.size"),
+                     (TileGrid(150.0, 15), "tile.resolution"),
+                     (TileGrid(150.0, 2), "tile.resolution")):
+        with pytest.raises(InvalidSeaStateError, match=f"{key} = "):
+            WaveField((), tile=bad)
+
+
+def test_small_wave_suppression_is_tessendorfs_exp_minus_k2_l2():
+    # eq. 24: P(k) exp(-k^2 l^2), the same draws: h0 is times exp(-k^2 l^2 / 2) exactly
+    spec = TileSpec(size=100.0, resolution=64, seed=7, wind_speed=6.0)
+    ell = 4.0  # the tile's shortest waves are 3.125 m (2.2 m on the diagonal)
+    plain = tile_amplitudes(spec)
+    damped = tile_amplitudes(TileSpec(**{**spec.__dict__, "suppression_length": ell}))
+    kx, ky = lattice(spec)
+    k2 = kx * kx + ky * ky
+    np.testing.assert_allclose(damped, plain * np.exp(-k2 * ell**2 / 2.0), rtol=1e-12, atol=0)
+    # the waves shorter than l keep under exp(-4 pi^2) = 7e-18 of their variance, those 10 l
+    # long and longer over exp(-(2 pi / 10)^2) = 67 %
+    wavelength = 2.0 * np.pi / np.sqrt(np.where(k2 > 0.0, k2, 1.0))
+    short, long = (k2 > 0.0) & (wavelength < ell), (k2 > 0.0) & (wavelength >= 10.0 * ell)
+    assert short.sum() > 1000 and long.sum() >= 20
+    assert np.sum(np.abs(damped[short]) ** 2) < 7.2e-18 * np.sum(np.abs(plain[short]) ** 2)
+    assert np.all(np.abs(damped[long]) ** 2 >= 0.67 * np.abs(plain[long]) ** 2)
+    # and the tile's heights: its spectrum's share below l is gone
+    sea = tile_sea(TileSpec(**{**spec.__dict__, "suppression_length": ell}))
+    below = sum(c.amplitude**2 for c in sea.components if c.wavelength < ell)
+    assert below < 1e-17 * sum(c.amplitude**2 for c in tile_sea(spec).components
+                               if c.wavelength < ell)

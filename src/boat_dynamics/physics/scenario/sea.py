@@ -213,7 +213,7 @@ def _fft(raw: Any, sim: SimulationSettings, depth: float) -> WaveField:
     key = "ocean.fft"
     d = mapping(raw, key)
     only(d, key, ("size", "resolution", "seed", "spectrum", "direction_deg", "choppiness",
-                  *_FFT_ONLY))
+                  "suppression_length", *_FFT_ONLY))
     spectrum = choice(d, "spectrum", key, "phillips", FFT_SPECTRA)
     for name, owner in _FFT_ONLY.items():
         if name in d and owner != spectrum:
@@ -241,6 +241,10 @@ def _fft(raw: Any, sim: SimulationSettings, depth: float) -> WaveField:
         direction=math.radians(number(d, "direction_deg", key, 0.0, -360.0, 360.0,
                                       unit="deg")),
         choppiness=number(d, "choppiness", key, 0.5, 0.0, 1.0),
+        suppression_length=number(
+            d, "suppression_length", key, 0.0, 0.0, 1e6, unit="m",
+            default_doc="0: none", range_doc="[0, ocean.fft.size] m (Tessendorf's small-wave "
+            "suppression P(k) exp(-k^2 l^2): waves shorter than l removed)"),
         gravity=sim.gravity, depth=depth)
     try:
         return tile_sea(TileSpec(**values))

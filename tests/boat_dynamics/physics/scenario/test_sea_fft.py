@@ -28,6 +28,13 @@ def test_an_fft_ocean_is_its_tiles_components():
     assert _sea({"model": "fft", "fft": {"seed": 4}}) != _sea({"model": "fft"}, seed=5)
 
 
+def test_small_wave_suppression_is_the_tiles():
+    sea = _sea({"model": "fft", "fft": {"size": 80.0, "resolution": 16,
+                                        "suppression_length": 3.0}}, seed=2)
+    assert sea == tile_sea(TileSpec(size=80.0, resolution=16, seed=2, suppression_length=3.0))
+    assert sea != _sea({"model": "fft", "fft": {"size": 80.0, "resolution": 16}}, seed=2)
+
+
 def test_the_default_model_is_the_gerstner_sum():
     comps = [{"amplitude": 0.3, "wavelength": 25.0}]
     assert _sea({"components": comps}) == _sea({"model": "gerstner", "components": comps})
@@ -48,6 +55,12 @@ def test_the_default_model_is_the_gerstner_sum():
      "ocean.fft.wind_speed", "only with spectrum: phillips"),
     ({"model": "fft", "fft": {"choppiness": 1.2}}, "ocean.fft.choppiness", r"\[0, 1\]"),
     ({"model": "fft", "fft": {"size": -1.0}}, "ocean.fft.size", r"\(0, 1e\+06\]"),
+    ({"model": "fft", "fft": {"suppression_length": -0.1}}, "ocean.fft.suppression_length",
+     r"\[0, 1e\+06\] m"),
+    ({"model": "fft", "fft": {"suppression_length": "2 m"}}, "ocean.fft.suppression_length",
+     "must be a number"),
+    ({"model": "fft", "fft": {"size": 50.0, "suppression_length": 60.0}},
+     "ocean.fft.suppression_length", r"must be a number in \[0, 50\] m \(the tile's size\)"),
 ])
 def test_a_bad_fft_ocean_is_refused_naming_key_value_and_what_is_allowed(ocean, key, allowed):
     with pytest.raises(ScenarioError, match=allowed) as err:
