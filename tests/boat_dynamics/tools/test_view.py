@@ -38,3 +38,14 @@ def test_a_wave_field_the_ocean_would_refuse_is_logged_once_and_the_view_goes_on
         live._on_field(WaveField(gravity=9.81, depth=math.inf, components=[one] * 20_000))
     assert live.refused == 3 and live.sea is good
     assert len(node.logger.errors) == 1 and "at most 4096" in node.logger.errors[0]
+
+
+def test_the_live_view_knows_an_fft_tile_from_its_message():
+    from boat_dynamics.tools.view import _Live
+    from boat_msgs_py.convert import seconds_to_time, wave_field_to_msg
+    from ocean_sim.physics.fft import TileSpec, tile_sea
+
+    sea = tile_sea(TileSpec(size=80.0, resolution=8, seed=1))
+    live = _Live(_Node(), scene=None, sources=())
+    live._on_field(wave_field_to_msg(sea, seconds_to_time(0.0)))
+    assert live.sea == sea and live.sea.tile == sea.tile  # drawn from its FFT grid
