@@ -49,7 +49,13 @@ Spectra, as F(k) with variance = integral of F over the wavevector plane:
   (DNV-RP-C205, 2010, sec. 3.5.8.4).
 
 The tile keeps the spectrum's variance only between its longest wave (L) and its shortest
-(2 L / N): choose L several peak wavelengths long.
+(2 L / N): choose L several peak wavelengths long. Tessendorf's small-wave suppression
+(eq. 24) multiplies either spectrum by exp(-k^2 l^2) (``suppression_length`` l).
+
+The sea of a tile carries it (``WaveField.tile``), so the view and /ocean/surface draw its
+surface by :func:`grid_surface`: the particles of rest points on an M x M grid of the tile,
+any M (:func:`grid_points`), summed by inverse FFTs from the components and tiled
+periodically, exact at the nodes.
 """
 
 from __future__ import annotations

@@ -295,8 +295,9 @@ def _validate_tile(wf: WaveField) -> None:
     if isinstance(n, bool) or not isinstance(n, int) or n < 4 or n % 2:
         raise InvalidSeaStateError("tile.resolution", n, "must be an even integer >= 4")
     index = wf.arrays.kd * (size / TWO_PI)  # (2, M) lattice indices n, m
-    off = np.abs(index - np.round(index))
-    outside = (off > _LATTICE_TOLERANCE) | (np.abs(np.round(index)) >= n // 2)
+    whole = np.round(index)
+    outside = ((np.abs(index - whole) > _LATTICE_TOLERANCE) | (np.abs(whole) >= n // 2)
+               | ~np.any(whole != 0.0, axis=0))  # k = 0 is no wave: a tile far too small
     if outside.any():
         i = int(np.flatnonzero(outside.any(axis=0))[0])
         raise InvalidSeaStateError(

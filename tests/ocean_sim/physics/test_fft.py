@@ -215,6 +215,8 @@ def test_a_tile_sea_carries_its_tile_and_its_lattice_is_checked():
     with pytest.raises(InvalidSeaStateError, match=r"components\[0\]"):
         WaveField((beyond,), tile=TileGrid(150.0, 16))
     assert WaveField((beyond,), tile=TileGrid(150.0, 18)).tile.resolution == 18
+    with pytest.raises(InvalidSeaStateError, match=r"components\[0\]"):  # at k = 0
+        WaveField((beyond,), tile=TileGrid(1e-9, 16))
     for bad, key in ((TileGrid(0.0, 16), "tile.size"), (TileGrid(math.inf, 16), "tile.size"),
                      (TileGrid(150.0, 15), "tile.resolution"),
                      (TileGrid(150.0, 2), "tile.resolution")):
