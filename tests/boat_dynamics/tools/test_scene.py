@@ -73,6 +73,9 @@ def test_an_fft_sea_is_drawn_from_its_grid_exact_at_the_nodes_tiled_over_any_are
     assert len(np.unique(colours, axis=0)) > 50  # shaded
     moved, _, _ = sea_mesh(TILE, t, centre + [0.1, -0.1], 150.0, 1.0)
     np.testing.assert_array_equal(moved, vertices)  # it does not swim
+    made, _, _ = sea_mesh(TILE, t, centre, 150.0, 1.0, made=lambda xy: 0.01 * xy[:, 0])
+    np.testing.assert_array_equal(made[:, :2], vertices[:, :2])  # the boats' waves added
+    np.testing.assert_allclose(made[:, 2], vertices[:, 2] + 0.01 * vertices[:, 0], atol=1e-12)
 
 
 def test_a_wide_fft_sea_keeps_to_the_vertex_budget_and_its_size():
