@@ -106,6 +106,25 @@ def _spawn(child: _Child, handshake: bool) -> None:
         os.close(write_fd)
 
 
+def _apart_note(scenario: Scenario, count: int) -> str | None:
+    """The warning for a run whose boats in different processes would feel each other's waves.
+
+    Made waves are not exchanged between processes (:mod:`.wave_making.interaction` steps
+    the boats of one process): a boat that makes waves (``made_waves``) and a boat with
+    coefficients in another shard do not meet. None when no such pair exists.
+    """
+    shards = [scenario.boats[shard_slice(k, count, len(scenario.boats))] for k in range(count)]
+    makes = [any(b.params.made_waves != "none" for b in shard) for shard in shards]
+    feels = [any(b.params.hydro is not None or (b.params.derive is not None
+                                                 and b.params.derive.estimate is not None)
+                 for b in shard) for shard in shards]
+    if not any(makes[k] and feels[j] for k in range(count) for j in range(count) if j != k):
+        return None
+    return ("boatsim: warning: boats in different processes do not feel each other's made "
+            "waves (hydrodynamics.made_waves: wakes, radiated and scattered waves); run them "
+            "in one process to have them")
+
+
 def _children(scenario: Scenario, path: str, options: RunOptions,
               parts: Path | None, snapshots: Path | None) -> list[_Child]:
     """The ocean's child and each shard's, with their ``_node`` arguments (no epoch yet).
@@ -315,6 +334,9 @@ def run_processes(scenario: Scenario, path: str, options: RunOptions,
         for c in children:
             _spawn(c, handshake=True)
         kind = "boats" if options.process.shards == len(scenario.boats) else "shards"
+        note = _apart_note(scenario, options.process.shards)
+        if note:
+            print(note, file=status)
         print(f"boatsim: started {len(children)} processes (ocean + {options.process.shards} {kind}"
               f"{', one clock: ' + _clock_words(options) if options.fast else ''}): pids "
               f"{' '.join(str(c.proc.pid) for c in children)}"
