@@ -24,6 +24,7 @@ from rclpy.node import Node
 from boat_dynamics.physics.core.system import FleetForces, FleetState
 from boat_dynamics.physics.scenario import BoatSpec
 from boat_dynamics.physics.scenario.specs import SimulationSettings
+from boat_dynamics.physics.wave_making.interaction import feels_made_waves
 from boat_dynamics.physics.world.footprints import Footprints
 from boat_dynamics.physics.world.obstacles import World
 from boat_dynamics.ros.sensors import SensorPublisher, TransformPublisher
@@ -255,10 +256,8 @@ def _feels_waves(boats: Sequence[BoatSpec], i: int) -> bool:
 
     It has coefficients (a file, or an estimate to be made) and another boat makes waves.
     """
-    p = boats[i].params
-    receiver = p.hydro is not None or (p.derive is not None and p.derive.estimate is not None)
-    return receiver and any(j != i and b.params.made_waves != "none"
-                            for j, b in enumerate(boats))
+    return feels_made_waves(boats[i].params) and any(
+        j != i and b.params.made_waves != "none" for j, b in enumerate(boats))
 
 
 def _boat_publishers(node: Node, spec: BoatSpec, tap: Tap | None, graph: GraphWatch | None,

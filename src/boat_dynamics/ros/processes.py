@@ -56,6 +56,7 @@ from pathlib import Path
 from typing import TextIO
 
 from boat_dynamics.physics.scenario import Scenario
+from boat_dynamics.physics.wave_making.interaction import feels_made_waves
 from boat_dynamics.ros.barrier import shard_slice
 from boat_dynamics.ros.runner import EXIT_STOPPED, RunOptions
 from boat_dynamics.tools.recording import RecordError
@@ -115,9 +116,7 @@ def _apart_note(scenario: Scenario, count: int) -> str | None:
     """
     shards = [scenario.boats[shard_slice(k, count, len(scenario.boats))] for k in range(count)]
     makes = [any(b.params.made_waves != "none" for b in shard) for shard in shards]
-    feels = [any(b.params.hydro is not None or (b.params.derive is not None
-                                                 and b.params.derive.estimate is not None)
-                 for b in shard) for shard in shards]
+    feels = [any(feels_made_waves(b.params) for b in shard) for shard in shards]
     if not any(makes[k] and feels[j] for k in range(count) for j in range(count) if j != k):
         return None
     return ("boatsim: warning: boats in different processes do not feel each other's made "

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from boat_dynamics.physics.body.hull import box_mesh
+from boat_dynamics.physics.body.rigid_body import quat_to_euler
 from boat_dynamics.physics.core.model import BoatParams
 from boat_dynamics.physics.core.tuning import equilibrium_height
 from boat_dynamics.physics.force_models.mesh_buoyancy import MeshBuoyancy
@@ -345,8 +346,8 @@ class Scene:
         self._boat(name)
         p = np.asarray(list(position), dtype=float)
         self._positions[name] = p
-        x, y, z, w = (float(c) for c in orientation)
-        self._headings[name] = math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+        orientation = np.asarray(list(orientation), dtype=float)
+        self._headings[name] = quat_to_euler(orientation)[2]
         self._track(name, t, p)
         if not self._due(("pose", name), t, self._pose_period):
             return

@@ -33,7 +33,7 @@ from boat_dynamics.physics.wave_making.scattered_waves import hull_radius, outgo
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
 __all__ = ["MADE_WAVES_MODELS", "SCATTER_REACH", "WAKE_REACH", "MadeWaves", "MadeWavesModel",
-           "made_waves_build", "made_waves_elevation", "made_waves_wrench"]
+           "feels_made_waves", "made_waves_build", "made_waves_elevation", "made_waves_wrench"]
 
 #: What waves a boat makes that the others feel: ``wake``, its Kelvin wake at speed;
 #: ``scattered``, the waves it radiates and scatters in the sea (its file's Kochin
@@ -64,7 +64,6 @@ class MadeWaves:
         ships: the wake makers' hulls, each with (S,) int, the fleet places of the boats
             that have it (boats sharing parameters share their thin ship).
         receivers: (R,) int, the boats with coefficients, which feel the waves.
-        hydro: their coefficients, one per receiver.
         min_wavelength: (R,) m, their wave filters.
         gravity: g, m/s^2.
         hydro_groups: each coefficient set of the receivers with (K,) int, the sorted rows
@@ -80,7 +79,6 @@ class MadeWaves:
 
     ships: tuple[tuple[ThinShip, np.ndarray], ...]
     receivers: np.ndarray
-    hydro: tuple[HydroCoefficients, ...]
     min_wavelength: np.ndarray
     gravity: float
     hydro_groups: tuple[tuple[HydroCoefficients, np.ndarray], ...] = ()
@@ -112,7 +110,7 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
     for row, h in enumerate(hydro):
         groups.setdefault(id(h), []).append(row)
     return MadeWaves(tuple((ship, np.array(m, dtype=np.intp)) for ship, m in makers.values()),
-                     np.array(receivers, dtype=np.intp), hydro,
+                     np.array(receivers, dtype=np.intp),
                      np.array([params[i].min_wavelength for i in receivers], dtype=float),
                      float(params[0].gravity),
                      tuple((hydro[rows[0]], np.array(rows, dtype=np.intp))
@@ -124,6 +122,18 @@ def made_waves_build(params: Sequence) -> MadeWaves | None:
                      tuple(params[i].hydro for i in scatterers),
                      np.array([SCATTER_REACH * hull_radius(params[i].hydro) for i in scatterers],
                               dtype=float))
+
+
+def feels_made_waves(params) -> bool:
+    """Whether a boat feels the waves others make: it has coefficients, or will have them.
+
+    ``coefficients: auto`` without a file: ``pipeline.init`` estimates them.
+
+    Args:
+        params: its :class:`~boat_dynamics.physics.core.model.BoatParams`, derived or not.
+    """
+    return params.hydro is not None or (params.derive is not None
+                                        and params.derive.estimate is not None)
 
 
 def _courses(velocity_world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -162,9 +172,7 @@ def _wakes_at(made: MadeWaves, reference_xy: np.ndarray, through_water: np.ndarr
         b, p = np.nonzero(live)
         found.append((rj[p], np.abs(a[b, p]), k[b, p] * u[p] * np.cos(theta[b, p]), k[b, p],
                       course[fast][si[p]] + theta[b, p], np.angle(a[b, p])))
-    if not found:
-        return None
-    return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
+    return _joined(found)
 
 
 def _scattered_at(made: MadeWaves, reference_xy: np.ndarray, heading: np.ndarray,
@@ -179,24 +187,26 @@ def _scattered_at(made: MadeWaves, reference_xy: np.ndarray, heading: np.ndarray
     """
     if made.scatterers.shape[0] == 0 or not sea.components:
         return None
-    first = [_outgoing(made, c, sea.filtered(float(made.scatterer_wavelength[c])),
-                       reference_xy, heading, t) for c in range(made.scatterers.shape[0])
-             if _reaches(made, c, reference_xy)]
-    found = [f for f in first if f is not None]
+    first = _joined([_outgoing(made, c, sea.filtered(float(made.scatterer_wavelength[c])),
+                               reference_xy, heading, t)
+                     for c in range(made.scatterers.shape[0])])
+    if first is None:
+        return None
+    second = _joined([_passed_on(made, c, first, reference_xy, heading, t, sea.gravity,
+                                 sea.depth) for c in range(made.scatterers.shape[0])])
+    return _joined([first, second])
+
+
+def _joined(parts: list[tuple[np.ndarray, ...] | None]) -> tuple[np.ndarray, ...] | None:
+    """The made waves of several parts (each as :func:`_wakes_at` gives them) as one.
+
+    None when every part is None.
+    """
+    found = [p for p in parts if p is not None]
     if not found:
         return None
-    waves = tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
-    second = [_passed_on(made, c, waves, reference_xy, heading, t, sea.gravity, sea.depth)
-              for c in range(made.scatterers.shape[0]) if _reaches(made, c, reference_xy)]
-    found += [f for f in second if f is not None]
-    return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
-
-
-def _reaches(made: MadeWaves, c: int, reference_xy: np.ndarray) -> bool:
-    """Whether another receiver is within scatterer c's reach (:data:`SCATTER_REACH`)."""
-    d = reference_xy[made.receivers] - reference_xy[made.scatterers[c]]
-    near = np.hypot(d[:, 0], d[:, 1]) <= made.scatter_reach[c]
-    return bool(np.any(near & (made.receivers != made.scatterers[c])))
+    return found[0] if len(found) == 1 else tuple(
+        np.concatenate(columns) for columns in zip(*found, strict=True))
 
 
 def _outgoing(made: MadeWaves, c: int, acting: WaveField, reference_xy: np.ndarray,
@@ -216,9 +226,7 @@ def _outgoing(made: MadeWaves, c: int, acting: WaveField, reference_xy: np.ndarr
         if w.count and keep.any():
             found.append((np.full(int(keep.sum()), j), w.amplitude[keep], w.omega[keep],
                           w.wavenumber[keep], w.direction[keep], w.phase[keep]))
-    if not found:
-        return None
-    return tuple(np.concatenate(parts) for parts in zip(*found, strict=True))
+    return _joined(found)
 
 
 def _passed_on(made: MadeWaves, c: int, waves: tuple[np.ndarray, ...],
@@ -263,14 +271,11 @@ def made_waves_wrench(made: MadeWaves, reference_xy: np.ndarray, heading: np.nda
         sea: the sea the boats are in (the scatterers answer it), or None: calm.
     """
     force, torque = np.zeros((count, 3)), np.zeros((count, 3))
-    parts = [w for w in (_wakes_at(made, reference_xy, through_water),
-                         None if sea is None else _scattered_at(made, reference_xy, heading,
-                                                                sea, t))
-             if w is not None]
-    if not parts:
+    waves = _joined([_wakes_at(made, reference_xy, through_water),
+                     None if sea is None else _scattered_at(made, reference_xy, heading, sea,
+                                                            t)])
+    if waves is None:
         return Wrench(force, torque)
-    waves = parts[0] if len(parts) == 1 else tuple(
-        np.concatenate(p) for p in zip(*parts, strict=True))
     rows, amplitude, omega, k, direction, phase = waves
     for hydro, members in made.hydro_groups:
         mine = np.isin(rows, members)

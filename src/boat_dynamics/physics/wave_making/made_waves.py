@@ -20,7 +20,7 @@ import numpy as np
 
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 
-__all__ = ["LocalWaves", "local_wrench", "local_wrenches", "stacked"]
+__all__ = ["LocalWaves", "local_wrench", "local_wrenches"]
 
 
 @dataclass(frozen=True)
@@ -67,20 +67,6 @@ class LocalWaves:
         d = np.asarray(xy, dtype=float).reshape(-1, 2) - self.at
         along = d[:, :1] * np.cos(self.direction) + d[:, 1:] * np.sin(self.direction)
         return np.cos(along * self.wavenumber + self.phase) @ self.amplitude
-
-
-def stacked(waves: list[LocalWaves]) -> LocalWaves:
-    """The plane waves of several :class:`LocalWaves` at one point and time, as one."""
-    if not waves:
-        raise ValueError("waves: empty, need at least one LocalWaves")
-    first = waves[0]
-    for w in waves[1:]:
-        if not (np.array_equal(w.at, first.at) and w.t == first.t):
-            raise ValueError(f"waves: at {w.at} and t {w.t}, not {first.at} and {first.t}: "
-                             "stack only the waves of one point at one time")
-    return LocalWaves(first.at, first.t, *(np.concatenate([getattr(w, f) for w in waves])
-                                           for f in ("amplitude", "omega", "wavenumber",
-                                                     "direction", "phase")))
 
 
 def local_wrench(hydro: HydroCoefficients, waves: LocalWaves, heading: float,

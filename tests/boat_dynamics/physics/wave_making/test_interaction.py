@@ -14,7 +14,7 @@ from boat_dynamics.physics.core.system import BoatInputs, FleetInputs
 from boat_dynamics.physics.potential_flow.diffraction import excitation_wrench
 from boat_dynamics.physics.scenario import ScenarioError, parse_scenario
 from boat_dynamics.physics.wave_making.kelvin_wake import wake_waves
-from boat_dynamics.physics.wave_making.made_waves import LocalWaves, stacked
+from boat_dynamics.physics.wave_making.made_waves import LocalWaves
 from ocean_sim.physics.waves import WaveComponent, WaveField
 
 DT = 0.01
@@ -101,14 +101,6 @@ def test_a_boat_crossing_a_wake_heaves_and_rolls_in_it():
         rms[made] = (float(np.std(heave)), math.degrees(float(np.std(roll))))
     assert 0.015 < rms["all"][0] < 0.04 and 0.2 < rms["all"][1] < 0.6, rms
     assert rms["none"][0] < 1e-9 and rms["none"][1] < 1e-7, rms
-
-
-def test_stacked_refuses_waves_of_other_points():
-    one = LocalWaves.none(np.zeros(2), 0.0)
-    with pytest.raises(ValueError, match="one point at one time"):
-        stacked([one, LocalWaves.none(np.ones(2), 0.0)])
-    with pytest.raises(ValueError, match="empty"):
-        stacked([])
 
 
 def test_made_waves_must_be_a_model():
