@@ -23,8 +23,8 @@ import numpy as np
 from boat_dynamics.physics.body.wrench import Wrench
 from boat_dynamics.physics.potential_flow.hydro import HydroCoefficients
 from boat_dynamics.physics.wave_making.kelvin_wake import (
-    SHORTEST_WAVE,
     ThinShip,
+    leaves_wake,
     pair_waves,
     wake_elevation,
 )
@@ -154,7 +154,7 @@ def _wakes_at(made: MadeWaves, reference_xy: np.ndarray, through_water: np.ndarr
     at = reference_xy[made.receivers]
     found = []
     for ship, members in made.ships:
-        fast = members[2.0 * math.pi * speed[members] ** 2 / made.gravity >= SHORTEST_WAVE]
+        fast = members[leaves_wake(speed[members], made.gravity)]
         if fast.shape[0] == 0:
             continue
         d = at[None, :, :] - reference_xy[fast][:, None, :]  # (S, R, 2)

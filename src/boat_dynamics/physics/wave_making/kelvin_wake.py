@@ -44,8 +44,8 @@ from boat_dynamics.physics.body.hull import HullMesh
 from boat_dynamics.physics.wave_making.made_waves import LocalWaves
 from ocean_sim.physics.constants import GRAVITY
 
-__all__ = ["SHORTEST_WAVE", "ThinShip", "amplitude", "michell_resistance", "pair_waves",
-           "thin_ship", "wake_elevation", "wake_waves"]
+__all__ = ["SHORTEST_WAVE", "ThinShip", "amplitude", "leaves_wake", "michell_resistance",
+           "pair_waves", "thin_ship", "wake_elevation", "wake_waves"]
 
 #: m, the shortest wave of a wake kept (shorter ones, the divergent waves near the track,
 #: are left out; a hull moving slower than sqrt(g SHORTEST_WAVE / 2 pi), 0.88 m/s, leaves
@@ -249,6 +249,15 @@ def pair_waves(ship: ThinShip, x: np.ndarray, y: np.ndarray, speed: np.ndarray,
     return theta, k, a
 
 
+def leaves_wake(speed: float | np.ndarray, gravity: float = GRAVITY) -> bool | np.ndarray:
+    """Whether a hull at ``speed`` (m/s, or an array of speeds) leaves a wake.
+
+    It does when its transverse waves, 2 pi U^2 / g long, are at least
+    :data:`SHORTEST_WAVE` (U >= 0.88 m/s).
+    """
+    return 2.0 * math.pi * np.asarray(speed) ** 2 / gravity >= SHORTEST_WAVE
+
+
 def wake_elevation(ship: ThinShip, speed: float, source_xy: np.ndarray, course: float,
                    xy: np.ndarray, gravity: float = GRAVITY) -> np.ndarray:
     """(P,) m, the wake's elevation at world points ``xy`` (P, 2) of a hull at speed.
@@ -262,7 +271,7 @@ def wake_elevation(ship: ThinShip, speed: float, source_xy: np.ndarray, course: 
         gravity: g, m/s^2.
     """
     xy = np.asarray(xy, dtype=float).reshape(-1, 2)
-    if 2.0 * math.pi * speed**2 / gravity < SHORTEST_WAVE:
+    if not leaves_wake(speed, gravity):
         return np.zeros(xy.shape[0])
     _, _, a = _waves(ship, speed, source_xy, course, xy, gravity)
     return a.sum(axis=0).real
@@ -277,7 +286,7 @@ def wake_waves(ship: ThinShip, speed: float, source_xy: np.ndarray, course: floa
     ``t``: s, the time of the step).
     """
     at = np.asarray(at, dtype=float).reshape(2)
-    if 2.0 * math.pi * speed**2 / gravity < SHORTEST_WAVE:
+    if not leaves_wake(speed, gravity):
         return LocalWaves.none(at, t)
     theta, k, a = _waves(ship, speed, source_xy, course, at[None, :], gravity)
     theta, k, a = theta[:, 0], k[:, 0], a[:, 0]
